@@ -1,0 +1,15 @@
+#include "core/error.h"
+
+namespace shatter {
+
+void throw_input_error(const std::string& where, const std::string& problem, const std::string& fix) {
+    std::string message = where + ": " + problem;
+    if (!fix.empty()) message += " (fix: " + fix + ")";
+    throw Error(ExitCode::BadInput, message);
+}
+
+void throw_io_error(const std::string& path, const std::string& reason) {
+    throw Error(ExitCode::Io, "cannot write " + path + ": " + reason);
+}
+
+}  // namespace shatter

@@ -1,0 +1,17 @@
+#include "core/log.h"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+namespace shatter {
+
+bool setup_logging(const std::string& level) {
+    auto lvl = spdlog::level::from_str(level);
+    if (lvl == spdlog::level::off && level != "off") return false;
+    auto logger = spdlog::stderr_color_st("shatter");
+    logger->set_pattern("%^%l%$: %v");
+    logger->set_level(lvl);
+    spdlog::set_default_logger(logger);
+    return true;
+}
+
+}  // namespace shatter

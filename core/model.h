@@ -1,0 +1,68 @@
+// The model: what prescore writes and simulate, render and `shatter info` read. A tet mesh split
+// into pieces, each with its surface, mass properties and collision parts, and the point
+// constraints that join neighbouring pieces. Stored as a versioned binary (docs/formats.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace shatter {
+
+// What a surface triangle of a piece borders.
+enum class FaceKind : uint8_t {
+    Outer = 0,     // the object's outside surface
+    Fracture = 1,  // a face shared with another piece: becomes visible when they part
+    Cavity = 2,    // the inside wall left by hollowing
+};
+
+struct PieceSurface {
+    std::vector<Vec3> vertices;  // (unit: m, model frame)
+    std::vector<Tri> triangles;  // outward oriented
+    std::vector<FaceKind> kinds; // one per triangle
+};
+
+struct MassProperties {
+    double volume = 0;             // (unit: m^3)
+    double mass = 0;               // (unit: kg) volume * density
+    Vec3 center = Vec3::Zero();    // centre of mass (unit: m, model frame)
+    Mat3 inertia = Mat3::Zero();   // inertia tensor about the centre of mass, model axes (unit: kg m^2)
+};
+
+// One convex part of a piece's collision shape: the convex hull of `points`.
+struct ConvexPart {
+    std::vector<Vec3> points;  // hull vertices (unit: m, model frame)
+    double volume = 0;         // volume of the tets the part stands for (unit: m^3)
+    double hull_volume = 0;    // volume of the hull (unit: m^3); >= volume
+};
+
+struct Piece {
+    std::vector<uint32_t> tets;  // indices into Model::mesh.tets, ascending
+    PieceSurface surface;
+    MassProperties mass;
+    std::vector<ConvexPart> collision;
+    bool connected = true;       // its tets form one face-connected component
+};
+
+// A point constraint joining two pieces at a vertex of a face they share.
+struct Constraint {
+    uint32_t piece_a = 0;  // piece_a < piece_b
+    uint32_t piece_b = 0;
+    uint32_t vertex = 0;   // index into Model::mesh.vertices
+    Vec3 pivot = Vec3::Zero();  // (unit: m, model frame)
+    double area = 0;       // the share of the shared-face area this constraint stands for (unit: m^2)
+};
+
+struct Model {
+    std::string producer;       // e.g. "shatter 0.1.0"
+    std::string settings_json;  // the settings (and input) that made the model, canonical JSON
+    double density = 0;         // (unit: kg/m^3) the density the masses were computed with
+    TetMesh mesh;               // every tet of the object (after hollowing)
+    std::vector<uint32_t> tet_piece;  // piece of each tet
+    std::vector<Piece> pieces;
+    std::vector<Constraint> constraints;  // sorted by (piece_a, piece_b, vertex)
+};
+
+}  // namespace shatter

@@ -1,0 +1,141 @@
+#include "core/model_io.h"
+
+#include "core/atomic_file.h"
+#include "core/binary_io.h"
+#include "core/stage_file.h"
+
+namespace shatter {
+
+namespace {
+
+void put_surface(ByteWriter& w, const PieceSurface& s) {
+    w.u32(static_cast<uint32_t>(s.vertices.size()));
+    for (const Vec3& v : s.vertices) w.vec3(v);
+    w.u32(static_cast<uint32_t>(s.triangles.size()));
+    for (size_t i = 0; i < s.triangles.size(); ++i) {
+        for (uint32_t v : s.triangles[i]) w.u32(v);
+        w.u8(static_cast<uint8_t>(s.kinds[i]));
+    }
+}
+
+PieceSurface get_surface(ByteReader& r) {
+    PieceSurface s;
+    s.vertices.resize(r.count(24, "surface vertices"));
+    for (Vec3& v : s.vertices) v = r.finite_vec3("a surface vertex");
+    const uint32_t n = r.count(13, "surface triangles");
+    s.triangles.resize(n);
+    s.kinds.resize(n);
+    const uint32_t nv = static_cast<uint32_t>(s.vertices.size());
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t& v : s.triangles[i]) v = r.index(nv, "surface vertex index");
+        uint8_t kind = r.u8();
+        if (kind > static_cast<uint8_t>(FaceKind::Cavity)) r.fail("unknown face kind " + std::to_string(kind));
+        s.kinds[i] = static_cast<FaceKind>(kind);
+    }
+    return s;
+}
+
+void put_piece(ByteWriter& w, const Piece& p) {
+    w.u32(static_cast<uint32_t>(p.tets.size()));
+    for (uint32_t t : p.tets) w.u32(t);
+    put_surface(w, p.surface);
+    w.f64(p.mass.volume);
+    w.f64(p.mass.mass);
+    w.vec3(p.mass.center);
+    w.mat3(p.mass.inertia);
+    w.u32(static_cast<uint32_t>(p.collision.size()));
+    for (const ConvexPart& part : p.collision) {
+        w.u32(static_cast<uint32_t>(part.points.size()));
+        for (const Vec3& v : part.points) w.vec3(v);
+        w.f64(part.volume);
+        w.f64(part.hull_volume);
+    }
+    w.u8(p.connected ? 1 : 0);
+}
+
+Piece get_piece(ByteReader& r, uint32_t tet_count) {
+    Piece p;
+    p.tets.resize(r.count(4, "piece tets"));
+    for (uint32_t& t : p.tets) t = r.index(tet_count, "piece tet");
+    p.surface = get_surface(r);
+    p.mass.volume = r.finite_f64("piece volume");
+    p.mass.mass = r.finite_f64("piece mass");
+    p.mass.center = r.finite_vec3("centre of mass");
+    p.mass.inertia = r.finite_mat3("inertia tensor");
+    p.collision.resize(r.count(28, "collision parts"));
+    for (ConvexPart& part : p.collision) {
+        part.points.resize(r.count(24, "collision points"));
+        for (Vec3& v : part.points) v = r.finite_vec3("a collision point");
+        part.volume = r.finite_f64("collision part volume");
+        part.hull_volume = r.finite_f64("collision hull volume");
+    }
+    p.connected = r.u8() != 0;
+    return p;
+}
+
+}  // namespace
+
+std::string encode_model(const Model& m) {
+    ByteWriter w;
+    w.f64(m.density);
+    w.u32(static_cast<uint32_t>(m.mesh.vertices.size()));
+    for (const Vec3& v : m.mesh.vertices) w.vec3(v);
+    w.u32(static_cast<uint32_t>(m.mesh.tets.size()));
+    for (size_t t = 0; t < m.mesh.tets.size(); ++t) {
+        for (uint32_t v : m.mesh.tets[t]) w.u32(v);
+        w.u32(m.tet_piece[t]);
+    }
+    w.u32(static_cast<uint32_t>(m.pieces.size()));
+    for (const Piece& p : m.pieces) put_piece(w, p);
+    w.u32(static_cast<uint32_t>(m.constraints.size()));
+    for (const Constraint& c : m.constraints) {
+        w.u32(c.piece_a);
+        w.u32(c.piece_b);
+        w.u32(c.vertex);
+        w.vec3(c.pivot);
+        w.f64(c.area);
+    }
+    StageHeader h{std::string(kModelMagic), kModelVersion, m.producer, m.settings_json};
+    return pack_stage_file(h, w.data());
+}
+
+Model decode_model(std::string_view bytes, const std::string& source) {
+    StageFile f = unpack_stage_file(bytes, source, kModelMagic, "model", 1, kModelVersion);
+    ByteReader r(f.payload, source, f.payload_offset);
+    Model m;
+    m.producer = f.header.producer;
+    m.settings_json = f.header.settings_json;
+    m.density = r.finite_f64("density");
+    m.mesh.vertices.resize(r.count(24, "vertices"));
+    for (Vec3& v : m.mesh.vertices) v = r.finite_vec3("a vertex");
+    const uint32_t nv = static_cast<uint32_t>(m.mesh.vertices.size());
+    const uint32_t nt = r.count(20, "tets");
+    m.mesh.tets.resize(nt);
+    m.tet_piece.resize(nt);
+    for (uint32_t t = 0; t < nt; ++t) {
+        for (uint32_t& v : m.mesh.tets[t]) v = r.index(nv, "tet vertex");
+        m.tet_piece[t] = r.u32();
+    }
+    m.pieces.resize(r.count(1, "pieces"));
+    const uint32_t np = static_cast<uint32_t>(m.pieces.size());
+    for (uint32_t t = 0; t < nt; ++t)
+        if (m.tet_piece[t] >= np) r.fail("tet " + std::to_string(t) + " names piece " + std::to_string(m.tet_piece[t]) +
+                                         " of " + std::to_string(np));
+    for (Piece& p : m.pieces) p = get_piece(r, nt);
+    m.constraints.resize(r.count(44, "constraints"));
+    for (Constraint& c : m.constraints) {
+        c.piece_a = r.index(np, "constraint piece");
+        c.piece_b = r.index(np, "constraint piece");
+        c.vertex = r.index(nv, "constraint vertex");
+        c.pivot = r.finite_vec3("constraint pivot");
+        c.area = r.finite_f64("constraint area");
+    }
+    if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the constraints");
+    return m;
+}
+
+void save_model(const std::string& path, const Model& model) { write_file_atomic(path, encode_model(model)); }
+
+Model load_model(const std::string& path) { return decode_model(read_file(path, "model file"), path); }
+
+}  // namespace shatter

@@ -1,0 +1,82 @@
+#include "core/settings.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace shatter {
+
+std::string Length::str() const {
+    if (relative) return fmt::format("{:g}", value);
+    return fmt::format("{:g}m", value);
+}
+
+std::optional<Length> Length::parse(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    const char* begin = text.c_str();
+    char* end = nullptr;
+    double v = std::strtod(begin, &end);
+    if (end == begin || !std::isfinite(v)) return std::nullopt;
+    std::string unit(end);
+    if (unit.empty()) return Length{v, true};
+    if (unit == "m") return Length{v, false};
+    if (unit == "cm") return Length{v * 1e-2, false};
+    if (unit == "mm") return Length{v * 1e-3, false};
+    return std::nullopt;
+}
+
+const char* to_string(RepairMode mode) {
+    switch (mode) {
+        case RepairMode::Auto: return "auto";
+        case RepairMode::Always: return "always";
+        case RepairMode::Never: return "never";
+    }
+    return "?";
+}
+
+std::optional<RepairMode> parse_repair_mode(const std::string& text) {
+    if (text == "auto") return RepairMode::Auto;
+    if (text == "always") return RepairMode::Always;
+    if (text == "never") return RepairMode::Never;
+    return std::nullopt;
+}
+
+void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
+                  bool from_flag) {
+    if (std::isfinite(value) && value >= limits.min && value <= limits.max) return;
+    std::string message = fmt::format("{}: {} = {:g} is outside [{:g}, {:g}] {}", where, key, value, limits.min,
+                                      limits.max, limits.unit);
+    if (!std::isfinite(value)) message = fmt::format("{}: {} = {} is not a finite number", where, key, value);
+    message += fmt::format(" (fix: give a value from {:g} to {:g})", limits.min, limits.max);
+    throw Error(from_flag ? ExitCode::Usage : ExitCode::BadInput, message);
+}
+
+void check_hollow(const std::string& where, const Length& thickness, bool from_flag) {
+    if (thickness.relative)
+        check_limits(where, "hollow (fraction of the diagonal)", thickness.value, kHollowRelativeLimits, from_flag);
+    else
+        check_limits(where, "hollow (absolute thickness)", thickness.value, kHollowAbsoluteLimits, from_flag);
+}
+
+nlohmann::ordered_json to_json(const MeshSettings& s) {
+    return {{"path", s.path},
+            {"scale", s.scale},
+            {"repair", to_string(s.repair)},
+            {"wrap_alpha", s.wrap_alpha},
+            {"wrap_offset", s.wrap_offset}};
+}
+
+nlohmann::ordered_json to_json(const PrescoreSettings& s) {
+    return {{"pieces", s.pieces},
+            {"seed", s.seed},
+            {"hollow", s.hollow ? nlohmann::ordered_json(s.hollow->str()) : nlohmann::ordered_json("solid")},
+            {"resolution", s.resolution},
+            {"density", s.density},
+            {"collision_max_excess", s.collision_max_excess},
+            {"collision_max_parts", s.collision_max_parts}};
+}
+
+}  // namespace shatter

@@ -1,0 +1,76 @@
+// Settings of every stage: plain structs with defaults and units. They are filled from the shot
+// file (core/shot.h), then from command-line flags, and every value is checked where it enters
+// against the limits below, with a message that names the file:line or the flag.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace shatter {
+
+// A closed range a setting must lie in, with the unit to print.
+struct Limits {
+    double min;
+    double max;
+    const char* unit;
+};
+
+// A length given either relative to the object's size (a fraction of its bounding-box
+// diagonal; written as a plain number, e.g. 0.05) or absolute (a number with the unit m, cm or
+// mm, e.g. "12mm").
+struct Length {
+    double value = 0;
+    bool relative = true;
+
+    double resolve(double diagonal) const { return relative ? value * diagonal : value; }
+    std::string str() const;
+    // Parses "0.05", "12mm", "1.5cm", "0.02m"; returns nullopt when the text is none of these.
+    static std::optional<Length> parse(const std::string& text);
+};
+
+enum class RepairMode { Auto, Always, Never };
+const char* to_string(RepairMode mode);
+std::optional<RepairMode> parse_repair_mode(const std::string& text);
+
+struct MeshSettings {
+    std::string path;                    // the mesh file; in a shot, relative to the shot's folder
+    double scale = 1.0;                  // metres per mesh unit (unit: m)
+    RepairMode repair = RepairMode::Auto;  // auto: alpha-wrap only meshes Mesh_3 cannot take
+    double wrap_alpha = 0.02;            // alpha-wrap ball radius, fraction of the diagonal
+    double wrap_offset = 0.001;          // alpha-wrap offset, fraction of the diagonal
+};
+inline constexpr Limits kScaleLimits{1e-9, 1e9, "m per mesh unit"};
+inline constexpr Limits kWrapAlphaLimits{1e-4, 0.5, "of the diagonal"};
+inline constexpr Limits kWrapOffsetLimits{1e-6, 0.1, "of the diagonal"};
+
+struct PrescoreSettings {
+    uint32_t pieces = 10;                 // number of pieces (unit: count)
+    uint64_t seed = 1;                    // seed of the random seed-tet choice
+    std::optional<Length> hollow;         // shell thickness; nullopt: solid
+    double resolution = 20;               // tet size = bounding-box diagonal / resolution
+    double density = 2400;                // (unit: kg/m^3) glass ~2500, ceramic ~2400, plaster ~1000
+    double collision_max_excess = 0.25;   // a collision part's hull may exceed its tets' volume by this fraction
+    uint32_t collision_max_parts = 16;    // most convex parts per piece
+};
+inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
+inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
+inline constexpr Limits kDensityLimits{1e-3, 1e5, "kg/m^3"};
+inline constexpr Limits kHollowRelativeLimits{1e-4, 0.5, "of the diagonal"};
+inline constexpr Limits kHollowAbsoluteLimits{1e-7, 1e6, "m"};
+inline constexpr Limits kCollisionExcessLimits{0.0, 100.0, "fraction"};
+inline constexpr Limits kCollisionPartsLimits{1, 4096, "parts"};
+
+// Throws Error(Usage or BadInput) "WHERE: KEY = VALUE is outside [MIN, MAX] UNIT" when value is
+// not finite or out of range. `where` is "file:line" or "--flag".
+void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
+                  bool from_flag);
+// Checks a hollow thickness against the relative or absolute limits.
+void check_hollow(const std::string& where, const Length& thickness, bool from_flag);
+
+nlohmann::ordered_json to_json(const MeshSettings& s);
+nlohmann::ordered_json to_json(const PrescoreSettings& s);
+
+}  // namespace shatter

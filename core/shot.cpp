@@ -1,0 +1,88 @@
+#include "core/shot.h"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/toml_reader.h"
+
+namespace shatter {
+
+namespace {
+
+void read_mesh(TomlSection& s, MeshSettings& mesh, const std::string& shot_path) {
+    if (s.text("path", mesh.path) && !mesh.path.empty()) {
+        std::filesystem::path p(mesh.path);
+        if (p.is_relative()) mesh.path = (std::filesystem::path(shot_path).parent_path() / p).lexically_normal().string();
+    }
+    s.number("scale", mesh.scale, kScaleLimits);
+    std::string repair;
+    if (s.text("repair", repair)) {
+        auto mode = parse_repair_mode(repair);
+        if (!mode) s.fail(s.node("repair"), fmt::format("mesh.repair = \"{}\" is not a repair mode", repair),
+                          "use \"auto\", \"always\" or \"never\"");
+        mesh.repair = *mode;
+    }
+    s.number("wrap_alpha", mesh.wrap_alpha, kWrapAlphaLimits);
+    s.number("wrap_offset", mesh.wrap_offset, kWrapOffsetLimits);
+    s.finish();
+}
+
+void read_hollow(TomlSection& s, PrescoreSettings& p) {
+    const toml::node* n = s.node("hollow");
+    if (!n) return;
+    const char* fix = "write hollow = 0.05 (fraction of the diagonal), hollow = \"12mm\", or hollow = false (solid)";
+    if (n->is_boolean()) {
+        if (n->as_boolean()->get()) s.fail(n, "prescore.hollow = true does not say how thick the shell is", fix);
+        p.hollow.reset();
+    } else if (auto v = n->value<double>()) {
+        p.hollow = Length{*v, true};
+    } else if (n->is_string()) {
+        auto len = Length::parse(n->as_string()->get());
+        if (!len) s.fail(n, fmt::format("prescore.hollow = \"{}\" is not a length", n->as_string()->get()), fix);
+        p.hollow = *len;
+    } else {
+        s.fail(n, "prescore.hollow has the wrong type", fix);
+    }
+    if (p.hollow) check_hollow(s.where(n), *p.hollow, false);
+}
+
+void read_prescore(TomlSection& s, PrescoreSettings& p) {
+    s.integer("pieces", p.pieces, kPiecesLimits);
+    s.integer("seed", p.seed);
+    read_hollow(s, p);
+    s.number("resolution", p.resolution, kResolutionLimits);
+    s.number("density", p.density, kDensityLimits);
+    s.number("collision_max_excess", p.collision_max_excess, kCollisionExcessLimits);
+    s.integer("collision_max_parts", p.collision_max_parts, kCollisionPartsLimits);
+    s.finish();
+}
+
+}  // namespace
+
+bool is_shot_path(const std::string& path) { return std::filesystem::path(path).extension() == ".toml"; }
+
+Shot load_shot(const std::string& path) {
+    toml::table root = parse_toml_file(path);
+    Shot shot;
+    shot.path = path;
+    TomlSection top(root, path, "");
+    auto section = [&](const char* name) -> const toml::table* {
+        const toml::node* n = top.node(name);
+        if (n && !n->is_table()) top.fail(n, fmt::format("'{}' must be a table: [{}]", name, name), "see docs/shot.md");
+        return n ? n->as_table() : nullptr;
+    };
+    if (const toml::table* t = section("mesh")) {
+        TomlSection s(*t, path, "mesh");
+        read_mesh(s, shot.mesh, path);
+    }
+    if (const toml::table* t = section("prescore")) {
+        TomlSection s(*t, path, "prescore");
+        read_prescore(s, shot.prescore);
+    }
+    top.finish();
+    return shot;
+}
+
+}  // namespace shatter

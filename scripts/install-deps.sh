@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs every Debian package shatter needs to build, test and run. Idempotent: packages
+# already present are skipped, and apt is only called (once) when something is missing.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config
+  # prescore: mesh I/O, tetrahedralization, repair
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libassimp-dev
+  # simulate
+  libbullet-dev libeigen3-dev
+  # render
+  libosmesa6-dev libpng-dev zlib1g-dev
+  # core: logging, CLI, shot files, JSON
+  libspdlog-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  # tests
+  libgtest-dev
+  # the demo mesh (/usr/share/glmark2/models/bunny.obj)
+  glmark2-data
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: done"

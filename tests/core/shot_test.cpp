@@ -1,0 +1,110 @@
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/shot.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+using testing_support::TempDir;
+
+std::string load_error(const std::string& path) {
+    try {
+        load_shot(path);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        return e.what();
+    }
+    ADD_FAILURE() << "no error for " << path;
+    return "";
+}
+
+TEST(ShotFile, ReadsEverySettingAndResolvesTheMeshBesideTheShot) {
+    TempDir dir;
+    std::string path = dir.write("a.toml", R"(# a comment
+[mesh]
+path = "models/bunny.obj"  # relative to the shot
+scale = 0.1
+repair = "never"
+
+[prescore]
+pieces = 7
+seed = 42
+hollow = "12mm"
+resolution = 25
+density = 1000
+)");
+    Shot s = load_shot(path);
+    EXPECT_EQ(s.mesh.path, dir.file("models/bunny.obj"));
+    EXPECT_DOUBLE_EQ(s.mesh.scale, 0.1);
+    EXPECT_EQ(s.mesh.repair, RepairMode::Never);
+    EXPECT_EQ(s.prescore.pieces, 7u);
+    EXPECT_EQ(s.prescore.seed, 42u);
+    ASSERT_TRUE(s.prescore.hollow.has_value());
+    EXPECT_FALSE(s.prescore.hollow->relative);
+    EXPECT_DOUBLE_EQ(s.prescore.hollow->value, 0.012);
+    EXPECT_DOUBLE_EQ(s.prescore.resolution, 25);
+    EXPECT_DOUBLE_EQ(s.prescore.density, 1000);
+}
+
+TEST(ShotFile, UnknownKeyNamesFileLineAndSuggestsTheKnownKey) {
+    TempDir dir;
+    std::string path = dir.write("a.toml", "[prescore]\npieces = 3\npeices = 4\n");
+    std::string m = load_error(path);
+    EXPECT_NE(m.find(path + ":3"), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown key 'prescore.peices'"), std::string::npos) << m;
+    EXPECT_NE(m.find("did you mean 'pieces'"), std::string::npos) << m;
+}
+
+TEST(ShotFile, UnknownSectionIsAnError) {
+    TempDir dir;
+    std::string m = load_error(dir.write("a.toml", "[mesh]\nscale = 1\n\n[prescor]\npieces = 3\n"));
+    EXPECT_NE(m.find(":4"), std::string::npos) << m;
+    EXPECT_NE(m.find("did you mean 'prescore'"), std::string::npos) << m;
+}
+
+TEST(ShotFile, OutOfRangeValueNamesKeyValueAndRange) {
+    TempDir dir;
+    std::string m = load_error(dir.write("a.toml", "[prescore]\n\npieces = 0\n"));
+    EXPECT_NE(m.find("a.toml:3"), std::string::npos) << m;
+    EXPECT_NE(m.find("prescore.pieces = 0 is outside [1, 1e+06]"), std::string::npos) << m;
+}
+
+TEST(ShotFile, NanAndWrongTypesAreRefused) {
+    TempDir dir;
+    EXPECT_NE(load_error(dir.write("a.toml", "[prescore]\ndensity = nan\n")).find("not a finite number"),
+              std::string::npos);
+    EXPECT_NE(load_error(dir.write("b.toml", "[prescore]\npieces = \"ten\"\n")).find("whole number"),
+              std::string::npos);
+    EXPECT_NE(load_error(dir.write("c.toml", "[prescore]\nhollow = -0.1\n")).find("outside"), std::string::npos);
+    EXPECT_NE(load_error(dir.write("d.toml", "[prescore]\nhollow = \"3 furlongs\"\n")).find("not a length"),
+              std::string::npos);
+    EXPECT_NE(load_error(dir.write("e.toml", "[mesh]\nrepair = \"maybe\"\n")).find("not a repair mode"),
+              std::string::npos);
+}
+
+TEST(ShotFile, SyntaxErrorNamesLineAndColumn) {
+    TempDir dir;
+    std::string m = load_error(dir.write("a.toml", "[mesh]\nscale = = 2\n"));
+    EXPECT_NE(m.find("a.toml:2:"), std::string::npos) << m;
+}
+
+TEST(ShotFile, MissingFileIsNamed) {
+    std::string m = load_error("/nonexistent/shot.toml");
+    EXPECT_NE(m.find("/nonexistent/shot.toml"), std::string::npos) << m;
+}
+
+TEST(Length, ParsesRelativeAndAbsoluteLengths) {
+    EXPECT_TRUE(Length::parse("0.05")->relative);
+    EXPECT_DOUBLE_EQ(Length::parse("12mm")->value, 0.012);
+    EXPECT_DOUBLE_EQ(Length::parse("1.5cm")->value, 0.015);
+    EXPECT_DOUBLE_EQ(Length::parse("2m")->value, 2);
+    EXPECT_FALSE(Length::parse("2 m").has_value());
+    EXPECT_FALSE(Length::parse("inf").has_value());
+    EXPECT_FALSE(Length::parse("").has_value());
+    EXPECT_DOUBLE_EQ((Length{0.1, true}.resolve(3.0)), 0.3);
+}
+
+}  // namespace
+}  // namespace shatter
