@@ -1,1 +1,71 @@
-int main() { return 0; }
+// The `shatter` command: global options, subcommand dispatch, and the mapping of errors to exit
+// codes (README: "Exit codes").
+#include <cstdio>
+#include <map>
+
+#include <spdlog/spdlog.h>
+
+#include "cmd/command.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/version.h"
+
+namespace shatter {
+
+std::string option_help(const std::string& description, const std::string& unit, const std::string& def) {
+    std::string extra;
+    if (!unit.empty()) extra = "unit: " + unit;
+    if (!def.empty()) extra += (extra.empty() ? "" : ", ") + std::string("default: ") + def;
+    return extra.empty() ? description : description + " (" + extra + ")";
+}
+
+}  // namespace shatter
+
+int main(int argc, char** argv) {
+    using namespace shatter;
+    CLI::App app{"shatter: turns a mesh into a fractured animation (energized rigid-body fracture).\n"
+                 "Stages: prescore (mesh -> pieces and constraints), info (summarize any stage file)."};
+    app.set_version_flag("--version", std::string("shatter ") + kVersion);
+    std::string log_level = "info";
+    app.add_option("--log-level", log_level, "diagnostics on stderr: trace, debug, info, warn, error, off (default: info)")
+        ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+    app.require_subcommand(1);
+    app.fallthrough();
+
+    std::map<const CLI::App*, RunCommand> commands;
+    auto add = [&](RunCommand (*adder)(CLI::App&)) {
+        RunCommand run = adder(app);
+        commands[app.get_subcommands({}).back()] = std::move(run);
+    };
+    add(add_prescore_command);
+    add(add_info_command);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        std::fprintf(stderr, "run 'shatter --help' or 'shatter <command> --help' for the options\n");
+        return static_cast<int>(ExitCode::Usage);
+    }
+    setup_logging(log_level);
+    try {
+        for (const auto& [sub, run] : commands)
+            if (sub->parsed()) return run();
+        return static_cast<int>(ExitCode::Usage);
+    } catch (const Error& e) {
+        spdlog::error("{}", e.what());
+        return static_cast<int>(e.code());
+    } catch (const std::bad_alloc&) {
+        spdlog::error("out of memory; try a coarser --resolution or fewer pieces");
+        return static_cast<int>(ExitCode::BadInput);
+    } catch (const std::exception& e) {
+        spdlog::error("internal error (a bug in shatter, please report it): {}", e.what());
+        return static_cast<int>(ExitCode::Internal);
+    }
+}

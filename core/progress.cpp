@@ -31,6 +31,8 @@ void Progress::done() {
 void Progress::draw(bool final) {
     const double fraction = total_ ? static_cast<double>(count_) / static_cast<double>(total_) : 1.0;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    // Fast loops stay quiet: a bar appears after half a second, lines on a pipe after two.
+    if (seconds < (tty_ ? 0.5 : 2.0) && !(final && (last_width_ >= 0 || last_tenth_ >= 0))) return;
     if (tty_) {
         const int width = 30;
         const int filled = static_cast<int>(fraction * width);

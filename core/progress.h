@@ -1,5 +1,5 @@
 // Progress of a slow loop, on stderr: a bar redrawn in place on a terminal; on a pipe or in CI,
-// a line at every tenth. Silent when the log level is above info.
+// a line at every tenth. Quiet for loops that end quickly, and when the log level is above info.
 #pragma once
 
 #include <chrono>

@@ -47,9 +47,10 @@ std::optional<RepairMode> parse_repair_mode(const std::string& text) {
 void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
                   bool from_flag) {
     if (std::isfinite(value) && value >= limits.min && value <= limits.max) return;
-    std::string message = fmt::format("{}: {} = {:g} is outside [{:g}, {:g}] {}", where, key, value, limits.min,
+    const std::string prefix = where == key ? "" : where + ": ";
+    std::string message = fmt::format("{}{} = {:g} is outside [{:g}, {:g}] {}", prefix, key, value, limits.min,
                                       limits.max, limits.unit);
-    if (!std::isfinite(value)) message = fmt::format("{}: {} = {} is not a finite number", where, key, value);
+    if (!std::isfinite(value)) message = fmt::format("{}{} = {} is not a finite number", prefix, key, value);
     message += fmt::format(" (fix: give a value from {:g} to {:g})", limits.min, limits.max);
     throw Error(from_flag ? ExitCode::Usage : ExitCode::BadInput, message);
 }

@@ -15,10 +15,11 @@ namespace shatter::testing_support {
 class TempDir {
 public:
     TempDir() {
+        static int counter = 0;
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         path_ = std::filesystem::temp_directory_path() /
-                ("shatter-test-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
-                 std::to_string(::getpid()));
+                ("shatter-test-" + sanitize(info->test_suite_name()) + "-" + sanitize(info->name()) + "-" +
+                 std::to_string(::getpid()) + "-" + std::to_string(counter++));
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }
@@ -38,6 +39,11 @@ public:
     }
 
 private:
+    static std::string sanitize(std::string s) {
+        for (char& c : s)
+            if (c == '/') c = '_';
+        return s;
+    }
     std::filesystem::path path_;
 };
 

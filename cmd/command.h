@@ -1,0 +1,21 @@
+// Each `shatter` subcommand lives in its own cmd/<name>_command.cpp: it declares its options on a
+// CLI11 subcommand and returns the function that runs it. Commands only parse options, call the
+// stage libraries and print; all logic is in the libraries.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace shatter {
+
+using RunCommand = std::function<int()>;
+
+RunCommand add_prescore_command(CLI::App& root);
+RunCommand add_info_command(CLI::App& root);
+
+// "DESCRIPTION (unit: UNIT, default: DEFAULT)" for --help texts.
+std::string option_help(const std::string& description, const std::string& unit, const std::string& def);
+
+}  // namespace shatter

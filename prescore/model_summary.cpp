@@ -1,0 +1,97 @@
+#include "prescore/model_summary.h"
+
+#include <map>
+
+#include <fmt/format.h>
+
+#include "prescore/tet_topology.h"
+
+namespace shatter {
+
+nlohmann::ordered_json model_summary(const Model& m) {
+    using json = nlohmann::ordered_json;
+    const TetTopology topo = build_topology(m.mesh);
+    double mass = 0, volume = 0;
+    size_t parts = 0;
+    json pieces = json::array();
+    for (uint32_t i = 0; i < m.pieces.size(); ++i) {
+        const Piece& p = m.pieces[i];
+        std::vector<char> mask(m.mesh.tets.size(), 0);
+        for (uint32_t t : p.tets) mask[t] = 1;
+        int32_t components = 0;
+        tet_components(topo, mask, &components);
+        size_t fracture = 0;
+        for (FaceKind k : p.surface.kinds) fracture += k == FaceKind::Fracture;
+        double hull = 0;
+        for (const ConvexPart& c : p.collision) hull += c.hull_volume;
+        mass += p.mass.mass;
+        volume += p.mass.volume;
+        parts += p.collision.size();
+        pieces.push_back({{"piece", i},
+                          {"tets", p.tets.size()},
+                          {"volume_m3", p.mass.volume},
+                          {"mass_kg", p.mass.mass},
+                          {"center_m", {p.mass.center.x(), p.mass.center.y(), p.mass.center.z()}},
+                          {"surface_triangles", p.surface.triangles.size()},
+                          {"fracture_triangles", fracture},
+                          {"collision_parts", p.collision.size()},
+                          {"collision_hull_volume_m3", hull},
+                          {"components", components},
+                          {"connected", components == 1}});
+    }
+    std::map<std::pair<uint32_t, uint32_t>, std::pair<size_t, double>> pairs;
+    for (const Constraint& c : m.constraints) {
+        auto& e = pairs[{c.piece_a, c.piece_b}];
+        e.first += 1;
+        e.second += c.area;
+    }
+    json pair_list = json::array();
+    for (const auto& [k, v] : pairs)
+        pair_list.push_back({{"pieces", {k.first, k.second}}, {"constraints", v.first}, {"area_m2", v.second}});
+    bool all_connected = true;
+    for (const json& p : pieces) all_connected = all_connected && p["connected"].get<bool>();
+    json j;
+    j["kind"] = "model";
+    j["producer"] = m.producer;
+    j["settings"] = json::parse(m.settings_json, nullptr, false);
+    j["pieces"] = m.pieces.size();
+    j["tets"] = m.mesh.tets.size();
+    j["vertices"] = m.mesh.vertices.size();
+    j["constraints"] = m.constraints.size();
+    j["piece_pairs"] = pairs.size();
+    j["density_kg_m3"] = m.density;
+    j["mass_kg"] = mass;
+    j["volume_m3"] = volume;
+    j["collision_parts"] = parts;
+    j["all_pieces_connected"] = all_connected;
+    j["model_size"] = {{"bodies", m.pieces.size()},
+                       {"constraints", m.constraints.size()},
+                       {"collision_parts", parts},
+                       {"tets", m.mesh.tets.size()}};
+    j["per_piece"] = std::move(pieces);
+    j["per_pair"] = std::move(pair_list);
+    return j;
+}
+
+std::string model_summary_text(const nlohmann::ordered_json& j) {
+    std::string out;
+    out += fmt::format("model         {} (density {} kg/m^3)\n", j["producer"].get<std::string>(),
+                       j["density_kg_m3"].get<double>());
+    out += fmt::format("model size    {} bodies, {} constraints, {} collision parts, {} tets\n",
+                       j["pieces"].get<size_t>(), j["constraints"].get<size_t>(), j["collision_parts"].get<size_t>(),
+                       j["tets"].get<size_t>());
+    out += fmt::format("piece pairs   {} joined by constraints\n", j["piece_pairs"].get<size_t>());
+    out += fmt::format("total         mass {:.6g} kg, volume {:.6g} m^3\n", j["mass_kg"].get<double>(),
+                       j["volume_m3"].get<double>());
+    out += fmt::format("connected     {}\n", j["all_pieces_connected"].get<bool>() ? "every piece is one component"
+                                                                                  : "SOME PIECES ARE SPLIT");
+    out += "\npiece   tets   volume(m^3)    mass(kg)  parts  fracture-tris  connected\n";
+    for (const auto& p : j["per_piece"])
+        out += fmt::format("{:5} {:6} {:13.6g} {:11.6g} {:6} {:14} {:>10}\n", p["piece"].get<int>(),
+                           p["tets"].get<size_t>(), p["volume_m3"].get<double>(), p["mass_kg"].get<double>(),
+                           p["collision_parts"].get<size_t>(), p["fracture_triangles"].get<size_t>(),
+                           p["connected"].get<bool>() ? "yes" : "NO");
+    return out;
+}
+
+}  // namespace shatter

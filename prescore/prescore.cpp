@@ -1,0 +1,165 @@
+#include "prescore/prescore.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+#include "core/binary_io.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stage_file.h"
+#include "prescore/collision_parts.h"
+#include "prescore/constraints.h"
+#include "prescore/hollow.h"
+#include "prescore/mass_properties.h"
+#include "prescore/mesh_load.h"
+#include "prescore/partition.h"
+#include "prescore/piece_surface.h"
+#include "prescore/repair.h"
+#include "prescore/tet_topology.h"
+#include "prescore/tetrahedralize.h"
+
+namespace shatter {
+
+namespace {
+
+class PhaseTimer {
+public:
+    explicit PhaseTimer(PrescoreReport& report) : report_(report), start_(std::chrono::steady_clock::now()) {}
+    void lap(const char* phase) {
+        auto now = std::chrono::steady_clock::now();
+        report_.phase_seconds.emplace_back(phase, std::chrono::duration<double>(now - start_).count());
+        start_ = now;
+    }
+
+private:
+    PrescoreReport& report_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// A mesh with no volume (all points in a plane, or a closed surface that encloses nothing) has
+// nothing inside to fracture; alpha wrapping would only turn it into a sheet of the offset's
+// thickness, so it is refused rather than repaired.
+void refuse_flat(const MeshCheck& c, const std::string& path) {
+    const Vec3 extent = c.bbox_max - c.bbox_min;
+    const double d = c.diagonal;
+    const bool flat = extent.minCoeff() <= 1e-6 * d;
+    const bool empty_inside = c.closed() && std::abs(c.volume) <= 1e-9 * d * d * d;
+    if (d > 0 && (flat || empty_inside))
+        throw_input_error(path,
+                          fmt::format("the mesh is flat: it encloses no volume (bounding box {:.4g} x {:.4g} x {:.4g} m, "
+                                      "volume {:.4g} m^3)", extent.x(), extent.y(), extent.z(), c.volume),
+                          "give a solid mesh; prescore fractures volumes, not sheets");
+}
+
+// The mesh Mesh_3 will see: the input when it can be tetrahedralized as it is, else its alpha
+// wrap when the repair mode allows.
+TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, PrescoreReport& report) {
+    report.input = check_mesh(mesh);
+    spdlog::info("mesh: {}", describe(report.input));
+    refuse_flat(report.input, settings.path);
+    if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
+    std::string why;
+    const bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
+    if (settings.repair == RepairMode::Never && !usable)
+        throw_input_error(settings.path, "the mesh cannot be tetrahedralized as it is: " + why,
+                          "allow repair with --repair auto (alpha wrapping), or fix the mesh");
+    if (settings.repair == RepairMode::Always || !usable) {
+        const double d = report.input.diagonal;
+        spdlog::info("repair: alpha wrap (alpha {:.4g} m, offset {:.4g} m){}", settings.wrap_alpha * d,
+                     settings.wrap_offset * d, usable ? "" : " because " + why);
+        mesh = alpha_wrap(mesh, settings.wrap_alpha * d, settings.wrap_offset * d);
+        report.repaired = true;
+    }
+    report.tetrahedralized_from = report.repaired ? check_mesh(mesh, false) : report.input;
+    if (report.repaired) {
+        const double before = report.input.volume, after = report.tetrahedralized_from.volume;
+        spdlog::info("repair: {} triangles, volume {:.6g} m^3 ({:+.2f}% of the input's {:.6g} m^3)",
+                     report.tetrahedralized_from.triangles, after, before > 0 ? 100 * (after / before - 1) : 0.0,
+                     before);
+    }
+    return mesh;
+}
+
+std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& settings, uint64_t mesh_hash) {
+    nlohmann::ordered_json j;
+    j["mesh"] = to_json(mesh);
+    j["mesh"]["fnv1a64"] = fmt::format("{:016x}", mesh_hash);
+    j["prescore"] = to_json(settings);
+    return j.dump();
+}
+
+void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity,
+                  const PrescoreSettings& settings) {
+    const uint32_t n = static_cast<uint32_t>(model.pieces.size());
+    for (uint32_t t = 0; t < model.tet_piece.size(); ++t) model.pieces[model.tet_piece[t]].tets.push_back(t);
+    CollisionSettings cs;
+    cs.max_excess = settings.collision_max_excess;
+    cs.max_parts = settings.collision_max_parts;
+    Progress progress("pieces", n);
+    for (uint32_t p = 0; p < n; ++p) {
+        Piece& piece = model.pieces[p];
+        piece.surface = piece_surface(model.mesh, topo, model.tet_piece, p, cavity);
+        piece.mass = mass_properties(model.mesh, piece.tets, settings.density);
+        piece.collision = collision_parts(model.mesh, piece.tets, cs);
+        std::vector<char> mask(model.mesh.tets.size(), 0);
+        for (uint32_t t : piece.tets) mask[t] = 1;
+        int32_t components = 0;
+        tet_components(topo, mask, &components);
+        piece.connected = components == 1;
+        progress.advance();
+    }
+}
+
+}  // namespace
+
+Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out) {
+    PrescoreReport local;
+    PrescoreReport& report = report_out ? *report_out : local;
+    PhaseTimer timer(report);
+
+    const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
+    TriangleMesh surface = load_mesh(mesh_settings.path, mesh_settings.scale);
+    timer.lap("load");
+    surface = prepare_surface(std::move(surface), mesh_settings, report);
+    timer.lap(report.repaired ? "check+repair" : "check");
+
+    Model model;
+    model.producer = producer_string();
+    model.settings_json = settings_json(mesh_settings, settings, mesh_hash);
+    model.density = settings.density;
+    model.mesh = tetrahedralize(surface, tetrahedralize_settings_for(report.input.diagonal, settings.resolution));
+    report.tets_meshed = model.mesh.tets.size();
+    spdlog::info("tetrahedralize: {} tets, {} vertices", model.mesh.tets.size(), model.mesh.vertices.size());
+    timer.lap("tetrahedralize");
+
+    TetTopology topo = build_topology(model.mesh);
+    std::vector<std::array<bool, 4>> cavity;
+    if (settings.hollow) {
+        report.hollow_thickness = settings.hollow->resolve(report.input.diagonal);
+        HollowResult h = hollow(model.mesh, topo, report.hollow_thickness);
+        model.mesh = std::move(h.mesh);
+        cavity = std::move(h.cavity_face);
+        report.tets_removed = h.removed;
+        report.tets_restored = h.restored;
+        topo = build_topology(model.mesh);
+        spdlog::info("hollow: shell {:.4g} m thick, {} tets removed, {} kept ({} restored to keep the shell connected)",
+                     report.hollow_thickness, h.removed, model.mesh.tets.size(), h.restored);
+        timer.lap("hollow");
+    }
+
+    Partition part = partition(model.mesh, topo, settings.pieces, settings.seed);
+    model.tet_piece = std::move(part.tet_piece);
+    model.pieces.resize(settings.pieces);
+    timer.lap("partition");
+    model.constraints = place_constraints(model.mesh, topo, model.tet_piece);
+    timer.lap("constraints");
+    build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings);
+    timer.lap("pieces");
+    return model;
+}
+
+}  // namespace shatter

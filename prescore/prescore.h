@@ -1,0 +1,35 @@
+// prescore: a mesh in, pieces and constraints out. The public entry point of the stage.
+//
+//   load (assimp) -> check -> [repair: alpha wrap] -> tetrahedralize (Mesh_3) -> [hollow]
+//     -> partition (round-robin flood fill) -> constraints -> per piece: surface, mass
+//     properties, collision parts
+//
+// Each phase is its own file in prescore/; this file only chains them and times them.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/model.h"
+#include "core/settings.h"
+#include "prescore/mesh_check.h"
+
+namespace shatter {
+
+struct PrescoreReport {
+    MeshCheck input;                 // the mesh as loaded
+    bool repaired = false;           // alpha-wrapped
+    MeshCheck tetrahedralized_from;  // the mesh Mesh_3 saw (the wrap when repaired)
+    size_t tets_meshed = 0;          // tets before hollowing
+    size_t tets_removed = 0;         // by hollowing
+    size_t tets_restored = 0;        // put back by hollowing to keep the shell connected
+    double hollow_thickness = 0;     // (unit: m) 0 when solid
+    std::vector<std::pair<std::string, double>> phase_seconds;  // in order
+};
+
+// Runs every phase; throws Error for bad input (unreadable mesh, mesh that cannot be
+// tetrahedralized and may not be repaired, more pieces than tets, ...).
+Model prescore(const MeshSettings& mesh, const PrescoreSettings& settings, PrescoreReport* report);
+
+}  // namespace shatter

@@ -1,0 +1,145 @@
+// `shatter prescore` driven like a user drives it: the bunny end to end, determinism, flags over
+// the shot file, and every class of bad input the issue lists.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "core/model_io.h"
+#include "prescore/tet_topology.h"
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+using testing_support::run_shatter;
+using testing_support::slurp;
+using testing_support::TempDir;
+
+const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+
+TEST(PrescoreCommand, BunnyGivesTenConnectedHollowPiecesJoinedOnlyWhereTheyTouch) {
+    TempDir dir;
+    auto r = run_shatter({"prescore", kBunny, "--scale", "0.1", "--hollow", "0.06", "-o", dir.file("b.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    Model m = load_model(dir.file("b.model"));
+    ASSERT_EQ(m.pieces.size(), 10u);
+
+    // Hollow: fewer tets than the solid bunny at the same resolution, and cavity faces exist.
+    TempDir solid_dir;
+    ASSERT_EQ(run_shatter({"prescore", kBunny, "--scale", "0.1", "-o", solid_dir.file("s.model")}).exit_code, 0);
+    Model solid = load_model(solid_dir.file("s.model"));
+    EXPECT_LT(m.mesh.tets.size(), solid.mesh.tets.size());
+    size_t cavity = 0;
+    for (const Piece& p : m.pieces)
+        for (FaceKind k : p.surface.kinds) cavity += k == FaceKind::Cavity;
+    EXPECT_GT(cavity, 0u);
+
+    // Every piece is one face-connected component (recomputed here, not read from the file).
+    TetTopology topo = build_topology(m.mesh);
+    for (uint32_t i = 0; i < m.pieces.size(); ++i) {
+        std::vector<char> mask(m.mesh.tets.size(), 0);
+        for (uint32_t t : m.pieces[i].tets) mask[t] = 1;
+        int32_t components = 0;
+        tet_components(topo, mask, &components);
+        EXPECT_EQ(components, 1) << "piece " << i;
+    }
+    // Constraints only between pieces that share a face, and every such pair has constraints.
+    std::set<std::pair<uint32_t, uint32_t>> touching, joined;
+    for (uint32_t t = 0; t < m.mesh.tets.size(); ++t)
+        for (int32_t n : topo.neighbour[t])
+            if (n >= 0 && m.tet_piece[t] != m.tet_piece[n])
+                touching.insert(std::minmax(m.tet_piece[t], m.tet_piece[static_cast<uint32_t>(n)]));
+    for (const Constraint& c : m.constraints) joined.insert({c.piece_a, c.piece_b});
+    EXPECT_EQ(joined, touching);
+    EXPECT_NE(r.out.find("10 pieces"), std::string::npos) << r.out;
+}
+
+TEST(PrescoreCommand, SameInputsGiveIdenticalBytes) {
+    TempDir dir;
+    for (const char* name : {"a.model", "b.model"})
+        ASSERT_EQ(run_shatter({"prescore", kBunny, "--scale", "0.1", "--hollow", "0.06", "--seed", "7", "-o",
+                               dir.file(name)})
+                      .exit_code,
+                  0);
+    EXPECT_EQ(slurp(dir.file("a.model")), slurp(dir.file("b.model")));
+    EXPECT_EQ(slurp(dir.file("a.pieces.ply")), slurp(dir.file("b.pieces.ply")));
+    ASSERT_EQ(run_shatter({"prescore", kBunny, "--scale", "0.1", "--seed", "8", "-o", dir.file("c.model")}).exit_code, 0);
+    EXPECT_NE(slurp(dir.file("a.model")), slurp(dir.file("c.model")));
+}
+
+TEST(PrescoreCommand, FlagsOverrideTheShotFile) {
+    TempDir dir;
+    std::string shot = dir.write("s.toml", std::string("[mesh]\npath = \"") + kBunny +
+                                               "\"\nscale = 0.1\n[prescore]\npieces = 4\n");
+    auto r = run_shatter({"prescore", shot, "--pieces", "6", "-o", dir.file("m.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(load_model(dir.file("m.model")).pieces.size(), 6u);
+    r = run_shatter({"prescore", shot, "-o", dir.file("n.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(load_model(dir.file("n.model")).pieces.size(), 4u);
+}
+
+TEST(PrescoreCommand, HelpListsEveryOptionWithItsDefault) {
+    auto r = run_shatter({"prescore", "--help"});
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* opt : {"--pieces", "--seed", "--hollow", "--solid", "--resolution", "--density", "--scale",
+                            "--repair", "--wrap-alpha", "--wrap-offset", "--collision-max-excess",
+                            "--collision-max-parts", "--output"})
+        EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+    EXPECT_NE(r.out.find("kg/m^3, default: 2400"), std::string::npos);
+}
+
+// One bad input: the exit code, a message naming `expect`, and no file left in the output folder.
+struct BadCase {
+    const char* name;
+    std::string mesh_text;  // written to the input file ("" = no file)
+    const char* mesh_name;
+    std::vector<std::string> flags;
+    int exit_code;
+    const char* expect;
+};
+
+class PrescoreBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(PrescoreBadInput, ClearMessageNonZeroExitNoOutputLeft) {
+    const BadCase& c = GetParam();
+    TempDir in, out;
+    std::string mesh = in.file(c.mesh_name);
+    if (!c.mesh_text.empty()) in.write(c.mesh_name, c.mesh_text);
+    std::vector<std::string> args = {"prescore", mesh, "-o", out.file("m.model")};
+    args.insert(args.end(), c.flags.begin(), c.flags.end());
+    auto r = run_shatter(args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_TRUE(out.entries().empty()) << "left behind: " << out.entries().front();
+}
+
+const char* kCube =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+std::string open_cube() {  // the cube without its top (two triangles)
+    std::string s = kCube;
+    return s.substr(0, s.find("f 5 6 7")) + s.substr(s.find("f 1 2 6"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, PrescoreBadInput,
+    ::testing::Values(
+        BadCase{"MissingFile", "", "nothere.obj", {}, 3, "nothere.obj"},
+        BadCase{"TextFileNamedObj", "this is not a mesh\njust words\n", "words.obj", {}, 3, "words.obj"},
+        BadCase{"EmptyMesh", "# nothing\n", "empty.obj", {}, 3, "empty.obj"},
+        BadCase{"NanCoordinates", std::string("v nan 0 0\n") + kCube, "nan.obj", {}, 3, "nan.obj"},
+        BadCase{"FlatMesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 3 2\nf 2 3 4\n", "flat.obj",
+                {}, 3, "flat.obj"},
+        BadCase{"OpenMeshWithRepairOff", open_cube(), "open.obj", {"--repair", "never"}, 3, "--repair auto"},
+        BadCase{"MorePiecesThanTets", kCube, "cube.obj", {"--pieces", "100000"}, 3, "pieces"},
+        BadCase{"ZeroThickness", kCube, "cube.obj", {"--hollow", "0"}, 2, "--hollow"},
+        BadCase{"NegativeThickness", kCube, "cube.obj", {"--hollow=-0.1"}, 2, "--hollow"},
+        BadCase{"NanDensity", kCube, "cube.obj", {"--density", "nan"}, 2, "--density"},
+        BadCase{"UnknownFlag", kCube, "cube.obj", {"--peices", "3"}, 2, "peices"}),
+    [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace shatter
