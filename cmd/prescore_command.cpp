@@ -26,7 +26,8 @@ struct PrescoreFlags {
     std::optional<uint64_t> seed;
     std::optional<std::string> hollow;
     bool solid = false;
-    std::optional<double> resolution, density, scale, wrap_alpha, wrap_offset, collision_excess;
+    std::optional<double> resolution, density, scale, wrap_alpha, wrap_offset;
+    std::optional<std::string> collision_tolerance;
     std::optional<uint32_t> collision_parts;
     std::optional<std::string> repair;
 };
@@ -36,6 +37,14 @@ void override_checked(T& field, const std::optional<T>& flag, const char* name, 
     if (!flag) return;
     check_limits(name, name, static_cast<double>(*flag), limits, true);
     field = *flag;
+}
+
+Length parse_length_flag(const char* flag, const std::string& text) {
+    auto len = Length::parse(text);
+    if (!len)
+        throw Error(ExitCode::Usage, fmt::format("{} {}: not a length (fix: write a fraction of the bounding-box "
+                                                 "diagonal such as 0.05, or a length such as 12mm)", flag, text));
+    return *len;
 }
 
 Shot shot_from(const PrescoreFlags& f) {
@@ -57,16 +66,15 @@ Shot shot_from(const PrescoreFlags& f) {
     if (f.seed) p.seed = *f.seed;
     override_checked(p.resolution, f.resolution, "--resolution", kResolutionLimits);
     override_checked(p.density, f.density, "--density", kDensityLimits);
-    override_checked(p.collision_max_excess, f.collision_excess, "--collision-max-excess", kCollisionExcessLimits);
+    if (f.collision_tolerance) {
+        p.collision_tolerance = parse_length_flag("--collision-tolerance", *f.collision_tolerance);
+        check_collision_tolerance("--collision-tolerance", p.collision_tolerance, true);
+    }
     override_checked(p.collision_max_parts, f.collision_parts, "--collision-max-parts", kCollisionPartsLimits);
     if (f.solid) p.hollow.reset();
     if (f.hollow) {
-        auto len = Length::parse(*f.hollow);
-        if (!len)
-            throw Error(ExitCode::Usage, fmt::format("--hollow {}: not a length (fix: write a fraction of the "
-                                                     "diagonal such as 0.05, or a length such as 12mm)", *f.hollow));
-        check_hollow("--hollow", *len, true);
-        p.hollow = *len;
+        p.hollow = parse_length_flag("--hollow", *f.hollow);
+        check_hollow("--hollow", *p.hollow, true);
     }
     return shot;
 }
@@ -147,9 +155,10 @@ RunCommand add_prescore_command(CLI::App& root) {
                   option_help("alpha-wrap ball radius, fraction of the diagonal", "", fmt::format("{:g}", m.wrap_alpha)));
     c->add_option("--wrap-offset", flags->wrap_offset,
                   option_help("alpha-wrap offset, fraction of the diagonal", "", fmt::format("{:g}", m.wrap_offset)));
-    c->add_option("--collision-max-excess", flags->collision_excess,
-                  option_help("split a piece's collision shape into convex parts until each part's hull exceeds "
-                              "its volume by at most this fraction", "", fmt::format("{:g}", p.collision_max_excess)));
+    c->add_option("--collision-tolerance", flags->collision_tolerance,
+                  option_help("split a piece's collision shape into convex parts until the mean gap between each "
+                              "part's hull and the piece's real shape is at most this: a fraction of the diagonal "
+                              "(0.01) or a length (2mm)", "fraction or m", p.collision_tolerance.str()));
     c->add_option("--collision-max-parts", flags->collision_parts,
                   option_help("most convex collision parts per piece", "count", std::to_string(p.collision_max_parts)));
     return [flags] { return run(*flags); };

@@ -55,11 +55,21 @@ void check_limits(const std::string& where, const std::string& key, double value
     throw Error(from_flag ? ExitCode::Usage : ExitCode::BadInput, message);
 }
 
-void check_hollow(const std::string& where, const Length& thickness, bool from_flag) {
-    if (thickness.relative)
-        check_limits(where, "hollow (fraction of the diagonal)", thickness.value, kHollowRelativeLimits, from_flag);
+void check_length(const std::string& where, const std::string& what, const Length& length, const Limits& relative,
+                  const Limits& absolute, bool from_flag) {
+    if (length.relative)
+        check_limits(where, what + " (fraction of the diagonal)", length.value, relative, from_flag);
     else
-        check_limits(where, "hollow (absolute thickness)", thickness.value, kHollowAbsoluteLimits, from_flag);
+        check_limits(where, what + " (absolute)", length.value, absolute, from_flag);
+}
+
+void check_hollow(const std::string& where, const Length& thickness, bool from_flag) {
+    check_length(where, "hollow", thickness, kHollowRelativeLimits, kHollowAbsoluteLimits, from_flag);
+}
+
+void check_collision_tolerance(const std::string& where, const Length& tolerance, bool from_flag) {
+    check_length(where, "collision_tolerance", tolerance, kCollisionToleranceRelativeLimits,
+                 kCollisionToleranceAbsoluteLimits, from_flag);
 }
 
 nlohmann::ordered_json to_json(const MeshSettings& s) {
@@ -76,7 +86,7 @@ nlohmann::ordered_json to_json(const PrescoreSettings& s) {
             {"hollow", s.hollow ? nlohmann::ordered_json(s.hollow->str()) : nlohmann::ordered_json("solid")},
             {"resolution", s.resolution},
             {"density", s.density},
-            {"collision_max_excess", s.collision_max_excess},
+            {"collision_tolerance", s.collision_tolerance.str()},
             {"collision_max_parts", s.collision_max_parts}};
 }
 

@@ -52,7 +52,7 @@ struct PrescoreSettings {
     std::optional<Length> hollow;         // shell thickness; nullopt: solid
     double resolution = 20;               // tet size = bounding-box diagonal / resolution
     double density = 2400;                // (unit: kg/m^3) glass ~2500, ceramic ~2400, plaster ~1000
-    double collision_max_excess = 0.25;   // a collision part's hull may exceed its tets' volume by this fraction
+    Length collision_tolerance{0.01, true};  // most mean gap between a collision part's hull and the piece's shape
     uint32_t collision_max_parts = 16;    // most convex parts per piece
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
@@ -60,15 +60,19 @@ inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
 inline constexpr Limits kDensityLimits{1e-3, 1e5, "kg/m^3"};
 inline constexpr Limits kHollowRelativeLimits{1e-4, 0.5, "of the diagonal"};
 inline constexpr Limits kHollowAbsoluteLimits{1e-7, 1e6, "m"};
-inline constexpr Limits kCollisionExcessLimits{0.0, 100.0, "fraction"};
+inline constexpr Limits kCollisionToleranceRelativeLimits{0.0, 1.0, "of the diagonal"};
+inline constexpr Limits kCollisionToleranceAbsoluteLimits{0.0, 1e6, "m"};
 inline constexpr Limits kCollisionPartsLimits{1, 4096, "parts"};
 
 // Throws Error(Usage or BadInput) "WHERE: KEY = VALUE is outside [MIN, MAX] UNIT" when value is
 // not finite or out of range. `where` is "file:line" or "--flag".
 void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
                   bool from_flag);
-// Checks a hollow thickness against the relative or absolute limits.
+// Checks a length against relative or absolute limits; `what` names it in the message.
+void check_length(const std::string& where, const std::string& what, const Length& length, const Limits& relative,
+                  const Limits& absolute, bool from_flag);
 void check_hollow(const std::string& where, const Length& thickness, bool from_flag);
+void check_collision_tolerance(const std::string& where, const Length& tolerance, bool from_flag);
 
 nlohmann::ordered_json to_json(const MeshSettings& s);
 nlohmann::ordered_json to_json(const PrescoreSettings& s);

@@ -48,13 +48,29 @@ void read_hollow(TomlSection& s, PrescoreSettings& p) {
     if (p.hollow) check_hollow(s.where(n), *p.hollow, false);
 }
 
+// A Length key: a number (fraction of the diagonal) or a string with a unit.
+void read_length(TomlSection& s, const char* key, Length& out,
+                 void (*check)(const std::string&, const Length&, bool)) {
+    const toml::node* n = s.node(key);
+    if (!n) return;
+    const std::string fix = fmt::format("write {} = 0.01 (fraction of the diagonal) or {} = \"2mm\"", key, key);
+    if (auto v = n->value<double>()) {
+        out = Length{*v, true};
+    } else if (auto len = n->is_string() ? Length::parse(n->as_string()->get()) : std::nullopt) {
+        out = *len;
+    } else {
+        s.fail(n, fmt::format("{} is not a length", s.key_name(key)), fix);
+    }
+    check(s.where(n), out, false);
+}
+
 void read_prescore(TomlSection& s, PrescoreSettings& p) {
     s.integer("pieces", p.pieces, kPiecesLimits);
     s.integer("seed", p.seed);
     read_hollow(s, p);
     s.number("resolution", p.resolution, kResolutionLimits);
     s.number("density", p.density, kDensityLimits);
-    s.number("collision_max_excess", p.collision_max_excess, kCollisionExcessLimits);
+    read_length(s, "collision_tolerance", p.collision_tolerance, check_collision_tolerance);
     s.integer("collision_max_parts", p.collision_max_parts, kCollisionPartsLimits);
     s.finish();
 }

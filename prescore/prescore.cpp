@@ -93,11 +93,11 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
 }
 
 void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity,
-                  const PrescoreSettings& settings) {
+                  const PrescoreSettings& settings, double diagonal) {
     const uint32_t n = static_cast<uint32_t>(model.pieces.size());
     for (uint32_t t = 0; t < model.tet_piece.size(); ++t) model.pieces[model.tet_piece[t]].tets.push_back(t);
     CollisionSettings cs;
-    cs.max_excess = settings.collision_max_excess;
+    cs.max_gap = settings.collision_tolerance.resolve(diagonal);
     cs.max_parts = settings.collision_max_parts;
     Progress progress("pieces", n);
     for (uint32_t p = 0; p < n; ++p) {
@@ -157,7 +157,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     timer.lap("partition");
     model.constraints = place_constraints(model.mesh, topo, model.tet_piece);
     timer.lap("constraints");
-    build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings);
+    build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
     timer.lap("pieces");
     return model;
 }

@@ -84,7 +84,7 @@ TEST(PrescoreCommand, HelpListsEveryOptionWithItsDefault) {
     auto r = run_shatter({"prescore", "--help"});
     EXPECT_EQ(r.exit_code, 0);
     for (const char* opt : {"--pieces", "--seed", "--hollow", "--solid", "--resolution", "--density", "--scale",
-                            "--repair", "--wrap-alpha", "--wrap-offset", "--collision-max-excess",
+                            "--repair", "--wrap-alpha", "--wrap-offset", "--collision-tolerance",
                             "--collision-max-parts", "--output"})
         EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
     EXPECT_NE(r.out.find("kg/m^3, default: 2400"), std::string::npos);

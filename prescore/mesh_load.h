@@ -1,0 +1,32 @@
+// Loading a surface mesh from any file format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, 3DS,
+// FBX, ...) into one indexed TriangleMesh in metres.
+//
+// What load_mesh does, in order:
+//   1. refuses a missing path or a directory before assimp sees it;
+//   2. assimp imports the file; a scene without triangles or polygons is refused with a plain
+//      message, then assimp validates it (ValidateDataStructure: indices in range, ...) and
+//      runs Triangulate + JoinIdenticalVertices (normals, UVs, colours removed first, so
+//      vertices are joined on position alone);
+//   3. walks the node tree depth first (children in file order, a node's meshes in file order),
+//      applying each node's accumulated transform in double precision; a mesh instanced by
+//      several nodes is added once per instance;
+//   4. drops points and lines (faces with fewer than 3 indices);
+//   5. merges vertices with exactly equal positions across meshes, keeping the first
+//      occurrence's place (deterministic: the output depends only on the file);
+//   6. multiplies every coordinate by `scale` (mesh units -> metres).
+// Every problem a user can cause is a shatter::Error (ExitCode::BadInput) whose message names
+// the file, the problem with its value, and a fix.
+#pragma once
+
+#include <string>
+
+#include "core/geometry.h"
+
+namespace shatter {
+
+// Loads `path` and returns its triangles in metres (coordinates times `scale`, which must be
+// finite and > 0; unit: m per mesh unit). Throws shatter::Error(BadInput) on a missing,
+// unreadable or corrupt file, a file without triangles, or NaN/Inf coordinates.
+TriangleMesh load_mesh(const std::string& path, double scale);
+
+}  // namespace shatter

@@ -1,0 +1,130 @@
+// tetrahedralize: the closed mesh becomes a Surface_mesh (Epick), the domain a
+// Polyhedral_mesh_domain_3 over it, and make_mesh_3 refines sequentially without optimisers.
+// Design notes and determinism: tetrahedralize.h.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Polyhedral_mesh_domain_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "prescore/tetrahedralize.h"
+
+namespace shatter {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Surface = CGAL::Surface_mesh<Point>;
+using Domain = CGAL::Polyhedral_mesh_domain_3<Surface, Kernel>;
+using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+using Criteria = CGAL::Mesh_criteria_3<Tr>;
+
+void check_setting(const char* name, double value, double min, bool min_allowed, double max,
+                   const char* unit) {
+    const bool ok = std::isfinite(value) && (min_allowed ? value >= min : value > min) && value <= max;
+    if (ok) return;
+    std::ostringstream s;
+    s << name << " = " << value << unit << " is outside " << (min_allowed ? "[" : "(") << min << ", "
+      << max << "]";
+    throw_input_error("tetrahedralize settings", s.str(),
+                      "derive the sizes from the mesh with a resolution (cells per diagonal), e.g. 20");
+}
+
+void check_settings(const TetrahedralizeSettings& s) {
+    const double inf = HUGE_VAL;
+    check_setting("cell_size", s.cell_size, 0, false, inf, " m");
+    check_setting("facet_size", s.facet_size, 0, false, inf, " m");
+    check_setting("facet_distance", s.facet_distance, 0, false, inf, " m");
+    check_setting("facet_angle", s.facet_angle, 0, false, 30, " degrees");
+    check_setting("cell_radius_edge_ratio", s.cell_radius_edge_ratio, 2, true, inf, "");
+}
+
+// The mesh as a Surface_mesh (face i is triangle i). Adding the faces one by one rejects a
+// non-manifold or misoriented mesh; this is ~5x faster than is_polygon_soup_a_polygon_mesh +
+// polygon_soup_to_polygon_mesh on the bunny (measured 0.16 s for those two).
+Surface to_surface(const TriangleMesh& mesh) {
+    Surface surface;
+    surface.reserve(mesh.vertices.size(), 3 * mesh.triangles.size() / 2, mesh.triangles.size());
+    for (const Vec3& v : mesh.vertices) surface.add_vertex(Point(v.x(), v.y(), v.z()));
+    for (const Tri& t : mesh.triangles) {
+        using V = Surface::Vertex_index;
+        if (surface.add_face(V(t[0]), V(t[1]), V(t[2])) == Surface::null_face()) {
+            throw_input_error("tetrahedralize input",
+                              "triangle (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
+                                  std::to_string(t[2]) +
+                                  ") makes the mesh non-manifold, misoriented or degenerate",
+                              "check the mesh (check_mesh) and repair it with alpha wrapping");
+        }
+    }
+    if (mesh.triangles.empty() || !CGAL::is_closed(surface)) {
+        throw_input_error("tetrahedralize input", "the mesh is not closed (it has boundary edges or no triangles)",
+                          "repair it with alpha wrapping");
+    }
+    return surface;
+}
+
+// The complex's cells, vertices numbered by first use, each tet positively oriented.
+TetMesh to_tet_mesh(const C3t3& c3t3) {
+    TetMesh out;
+    std::unordered_map<Tr::Vertex_handle, uint32_t> index;
+    auto point_of = c3t3.triangulation().geom_traits().construct_point_3_object();
+    for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
+        Tet tet{};
+        for (int i = 0; i < 4; ++i) {
+            auto [it, inserted] = index.try_emplace(c->vertex(i), uint32_t(out.vertices.size()));
+            if (inserted) {
+                const Point p = point_of(c->vertex(i)->point());
+                out.vertices.emplace_back(p.x(), p.y(), p.z());
+            }
+            tet[i] = it->second;
+        }
+        const auto& v = out.vertices;
+        if (tet_volume(v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]) < 0) std::swap(tet[2], tet[3]);
+        out.tets.push_back(tet);
+    }
+    return out;
+}
+
+}  // namespace
+
+TetrahedralizeSettings tetrahedralize_settings_for(double diagonal, double resolution) {
+    check_setting("resolution", resolution, 0, false, HUGE_VAL, " cells per diagonal");
+    check_setting("mesh bounding-box diagonal", diagonal, 0, false, HUGE_VAL, " m");
+    TetrahedralizeSettings settings;
+    settings.cell_size = diagonal / resolution;
+    settings.facet_size = settings.cell_size;
+    settings.facet_distance = settings.cell_size / 10;
+    return settings;
+}
+
+TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSettings& settings) {
+    check_settings(settings);
+    const Surface surface = to_surface(closed_mesh);
+    const Domain domain(surface);  // its random generator is CGAL::Random(0): deterministic
+
+    const Criteria::Facet_criteria facets(settings.facet_angle, settings.facet_size, settings.facet_distance);
+    const Criteria::Cell_criteria cells(settings.cell_radius_edge_ratio, settings.cell_size);
+    const Criteria criteria(facets, cells);
+
+    namespace params = CGAL::parameters;
+    const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
+                                              params::no_lloyd(), params::no_odt());
+    TetMesh out = to_tet_mesh(c3t3);
+    if (out.tets.empty()) {
+        std::ostringstream s;
+        s << "Mesh_3 made no tets at cell size " << settings.cell_size
+          << " m: the mesh is too thin for this resolution";
+        throw_input_error("tetrahedralize", s.str(), "raise the resolution (smaller cells)");
+    }
+    return out;
+}
+
+}  // namespace shatter

@@ -1,0 +1,272 @@
+// load_mesh: every format gives the same unit cube, scale is applied, meshes are merged, the
+// real bunny loads with the counts PHYSICS.md gives, and bad files are BadInput errors that
+// name the file.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "prescore/mesh_check.h"
+#include "prescore/mesh_load.h"
+
+namespace shatter {
+namespace {
+
+// The unit cube [0,1]^3: 8 corners, 12 outward counter-clockwise triangles (0-based).
+const double kCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+const int kFaces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                           {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+
+std::string temp_path(const std::string& name) {
+    std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "shatter_mesh_load_test";
+    std::filesystem::create_directories(dir);
+    return (dir / name).string();
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+    const std::string path = temp_path(name);
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+std::string cube_obj() {
+    std::ostringstream s;
+    for (const auto& c : kCorners) s << "v " << c[0] << " " << c[1] << " " << c[2] << "\n";
+    for (const auto& f : kFaces) s << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+    return s.str();
+}
+
+std::string cube_ply() {
+    std::ostringstream s;
+    s << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 12\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const auto& c : kCorners) s << c[0] << " " << c[1] << " " << c[2] << "\n";
+    for (const auto& f : kFaces) s << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
+    return s.str();
+}
+
+std::string cube_stl() {
+    std::ostringstream s;
+    s << "solid cube\n";
+    for (const auto& f : kFaces) {
+        s << "facet normal 0 0 0\nouter loop\n";
+        for (int i : f) s << "vertex " << kCorners[i][0] << " " << kCorners[i][1] << " " << kCorners[i][2] << "\n";
+        s << "endloop\nendfacet\n";
+    }
+    s << "endsolid cube\n";
+    return s.str();
+}
+
+std::string cube_off() {
+    std::ostringstream s;
+    s << "OFF\n8 12 0\n";
+    for (const auto& c : kCorners) s << c[0] << " " << c[1] << " " << c[2] << "\n";
+    for (const auto& f : kFaces) s << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
+    return s.str();
+}
+
+void expect_unit_cube(const TriangleMesh& mesh, double scale) {
+    EXPECT_EQ(mesh.vertices.size(), 8u);
+    EXPECT_EQ(mesh.triangles.size(), 12u);
+    const MeshCheck check = check_mesh(mesh);
+    EXPECT_NEAR(check.volume, scale * scale * scale, 1e-12);
+    EXPECT_TRUE(check.closed());
+    EXPECT_TRUE(check.manifold());
+    EXPECT_TRUE(check.oriented());
+    EXPECT_EQ(check.components, 1u);
+    EXPECT_EQ(check.self_intersections, 0u);
+}
+
+TEST(LoadMesh, UnitCubeObjGivesEightVerticesTwelveTrianglesVolumeOne) {
+    expect_unit_cube(load_mesh(write_file("cube.obj", cube_obj()), 1.0), 1.0);
+}
+
+TEST(LoadMesh, UnitCubeAsciiPlyGivesEightVerticesTwelveTrianglesVolumeOne) {
+    expect_unit_cube(load_mesh(write_file("cube.ply", cube_ply()), 1.0), 1.0);
+}
+
+TEST(LoadMesh, UnitCubeAsciiStlJoinsItsUnsharedCornersIntoEightVertices) {
+    expect_unit_cube(load_mesh(write_file("cube.stl", cube_stl()), 1.0), 1.0);
+}
+
+TEST(LoadMesh, UnitCubeOffGivesEightVerticesTwelveTrianglesVolumeOne) {
+    expect_unit_cube(load_mesh(write_file("cube.off", cube_off()), 1.0), 1.0);
+}
+
+TEST(LoadMesh, ScaleHalfGivesVolumeOneEighth) {
+    expect_unit_cube(load_mesh(write_file("cube_half.obj", cube_obj()), 0.5), 0.5);
+}
+
+TEST(LoadMesh, TwoObjectsSharingVertexPositionsAreMergedIntoOneClosedCube) {
+    // Object "box" is the cube without its top (10 triangles); object "lid" is the top, written
+    // with its own copies of the four top corners. Merging by position closes the cube.
+    std::ostringstream s;
+    s << "o box\n";
+    for (const auto& c : kCorners) s << "v " << c[0] << " " << c[1] << " " << c[2] << "\n";
+    for (int f = 0; f < 12; ++f) {
+        if (f == 2 || f == 3) continue;
+        s << "f " << kFaces[f][0] + 1 << " " << kFaces[f][1] + 1 << " " << kFaces[f][2] + 1 << "\n";
+    }
+    s << "o lid\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 9 10 11\nf 9 11 12\n";
+    const TriangleMesh mesh = load_mesh(write_file("two_objects.obj", s.str()), 1.0);
+    expect_unit_cube(mesh, 1.0);
+}
+
+std::string base64(const std::string& bytes) {
+    const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t n = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        if (i + 2 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 2]));
+        out += table[(n >> 18) & 63];
+        out += table[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? table[n & 63] : '=';
+    }
+    return out;
+}
+
+// A glTF 2.0 file whose one cube mesh is used by two nodes: one untransformed, one translated
+// by (3, 0, 0) and scaled by 2.
+std::string cube_gltf_two_instances() {
+    std::string buffer;
+    for (const auto& c : kCorners)
+        for (double x : c) {
+            const float f = float(x);
+            buffer.append(reinterpret_cast<const char*>(&f), 4);
+        }
+    for (const auto& face : kFaces)
+        for (int i : face) {
+            const uint16_t index = uint16_t(i);
+            buffer.append(reinterpret_cast<const char*>(&index), 2);
+        }
+    std::ostringstream s;
+    s << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"mesh": 0, "translation": [3, 0, 0], "scale": [2, 2, 2]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+  "buffers": [{"byteLength": 168, "uri": "data:application/octet-stream;base64,)"
+      << base64(buffer) << R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96, "target": 34962},
+                  {"buffer": 0, "byteOffset": 96, "byteLength": 72, "target": 34963}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 1]},
+                {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}]}
+)";
+    return s.str();
+}
+
+TEST(LoadMesh, GltfMeshUsedByTwoNodesGivesTwoCubesWithNodeTransformsApplied) {
+    const TriangleMesh mesh = load_mesh(write_file("two_cubes.gltf", cube_gltf_two_instances()), 1.0);
+    EXPECT_EQ(mesh.vertices.size(), 16u);
+    EXPECT_EQ(mesh.triangles.size(), 24u);
+    const MeshCheck check = check_mesh(mesh);
+    EXPECT_NEAR(check.volume, 1.0 + 8.0, 1e-12);  // the unit cube and the cube of side 2
+    EXPECT_EQ(check.components, 2u);
+    EXPECT_TRUE(check.closed() && check.manifold() && check.oriented());
+    EXPECT_EQ(check.bbox_max, Vec3(5, 2, 2));
+}
+
+TEST(LoadMesh, GlmarkBunnyHasPhysicsMdCountsClosedManifoldOneComponentTwoCrossings) {
+    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not installed (glmark2-data)";
+    auto start = std::chrono::steady_clock::now();
+    const TriangleMesh mesh = load_mesh(bunny, 1.0);
+    auto loaded = std::chrono::steady_clock::now();
+    const MeshCheck check = check_mesh(mesh);
+    auto checked = std::chrono::steady_clock::now();
+    using ms = std::chrono::duration<double, std::milli>;
+    std::printf("bunny: load %.0f ms, check %.0f ms: %s\n", ms(loaded - start).count(),
+                ms(checked - loaded).count(), describe(check).c_str());
+    EXPECT_EQ(mesh.vertices.size(), 34835u);
+    EXPECT_EQ(mesh.triangles.size(), 69666u);
+    EXPECT_TRUE(check.closed());
+    EXPECT_TRUE(check.manifold());
+    EXPECT_TRUE(check.oriented());
+    EXPECT_GT(check.volume, 0);
+    EXPECT_EQ(check.components, 1u);
+    EXPECT_EQ(check.self_intersections, 2u);
+    std::string why;
+    EXPECT_TRUE(can_tetrahedralize(check, &why)) << why;
+}
+
+// Runs load_mesh and returns the BadInput error's message (fails the test otherwise).
+std::string bad_input_message(const std::string& path, double scale = 1.0) {
+    try {
+        load_mesh(path, scale);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput) << e.what();
+        return e.what();
+    }
+    ADD_FAILURE() << "load_mesh(" << path << ") did not throw";
+    return "";
+}
+
+TEST(LoadMeshErrors, MissingFileIsBadInputNamingTheFile) {
+    const std::string path = temp_path("no_such_mesh.obj");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, TextFileNamedObjIsBadInputNamingTheFile) {
+    const std::string path = write_file("letter.obj", "Dear reader,\nthis is not a mesh.\n");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("no triangles"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, EmptyObjIsBadInputNamingTheFile) {
+    const std::string path = write_file("empty.obj", "");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("empty"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, ObjWithOnlyVerticesIsBadInputWithNoTriangles) {
+    const std::string path = write_file("vertices.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("no triangles"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, ObjIndexOutOfRangeIsBadInputWithAssimpsReason) {
+    const std::string path = write_file("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("out of range"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, ObjWithOnlyPointsAndLinesHasNoTriangles) {
+    const std::string path = write_file("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\np 1\n");
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("no triangles"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, NanCoordinateIsBadInputNamingTheFileAndPosition) {
+    std::string text = cube_obj();
+    text.replace(text.find("v 1 1 1"), 7, "v 1 nan 1");
+    const std::string path = write_file("nan.obj", text);
+    const std::string message = bad_input_message(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    // assimp renumbers vertices, so the message gives the bad position itself.
+    EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+    EXPECT_NE(message.find("(1, nan, 1)"), std::string::npos) << message;
+}
+
+TEST(LoadMeshErrors, ZeroNegativeAndInfiniteScaleAreBadInput) {
+    const std::string path = write_file("cube_scale.obj", cube_obj());
+    for (double scale : {0.0, -1.0, HUGE_VAL, std::nan("")}) {
+        const std::string message = bad_input_message(path, scale);
+        EXPECT_NE(message.find("scale"), std::string::npos) << message;
+    }
+}
+
+}  // namespace
+}  // namespace shatter
