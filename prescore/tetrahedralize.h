@@ -1,6 +1,7 @@
 // Filling a closed surface with tetrahedra: CGAL Mesh_3 (Delaunay refinement; Jamin, Alliez,
 // Yvinec, Boissonnat, "CGALmesh: a generic framework for Delaunay mesh generation", ACM TOMS
-// 2015) over a Polyhedral_mesh_domain_3.
+// 2015) over a Polyhedral_mesh_domain_with_features_3: edges sharper than feature_angle are
+// protected (sampled first and kept exact), so a box keeps its corners and its volume.
 //
 // Determinism: sequential refinement, the domain's fixed random seed (CGAL::Random(0)), and no
 // optimisation passes (no Lloyd, ODT, perturb or exude: the default perturb/exude changed the
@@ -21,6 +22,8 @@ struct TetrahedralizeSettings {
     double facet_distance = 0;          // max boundary-facet distance to the surface (unit: m, > 0)
     double facet_angle = 25;            // min boundary-facet angle (unit: degrees, in (0, 30])
     double cell_radius_edge_ratio = 3;  // max tet circumradius / shortest edge (unitless, >= 2)
+    double feature_angle = 60;          // creases whose face normals differ by more are kept exact (unit: degrees)
+    double feature_min_length = 0;      // shorter creases are not protected (unit: m; the cell size applies too)
 };
 
 // The default resolution: the bunny (PHYSICS.md) gets a few thousand tets. Measured on the

@@ -1,11 +1,12 @@
 // tetrahedralize: the closed mesh becomes a Surface_mesh (Epick), the domain a
-// Polyhedral_mesh_domain_3 over it, and make_mesh_3 refines sequentially without optimisers.
+// Polyhedral_mesh_domain_with_features_3 over it (sharp creases at least a tet long are
+// protected, so boxes stay boxes), and make_mesh_3 refines sequentially without optimisers.
 // Design notes and determinism: tetrahedralize.h.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
-#include <CGAL/Polyhedral_mesh_domain_3.h>
+#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/make_mesh_3.h>
 
@@ -14,6 +15,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "prescore/sharp_features.h"
 #include "prescore/tetrahedralize.h"
 
 namespace shatter {
@@ -22,9 +24,9 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Surface = CGAL::Surface_mesh<Point>;
-using Domain = CGAL::Polyhedral_mesh_domain_3<Surface, Kernel>;
+using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<Kernel, Surface>;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
-using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
 
 void check_setting(const char* name, double value, double min, bool min_allowed, double max,
@@ -45,6 +47,7 @@ void check_settings(const TetrahedralizeSettings& s) {
     check_setting("facet_distance", s.facet_distance, 0, false, inf, " m");
     check_setting("facet_angle", s.facet_angle, 0, false, 30, " degrees");
     check_setting("cell_radius_edge_ratio", s.cell_radius_edge_ratio, 2, true, inf, "");
+    check_setting("feature_angle", s.feature_angle, 0, false, 180, " degrees");
 }
 
 // The mesh as a Surface_mesh (face i is triangle i). Adding the faces one by one rejects a
@@ -102,19 +105,31 @@ TetrahedralizeSettings tetrahedralize_settings_for(double diagonal, double resol
     settings.cell_size = diagonal / resolution;
     settings.facet_size = settings.cell_size;
     settings.facet_distance = settings.cell_size / 10;
+    // The bunny's longest scan crease is 8% of its diagonal; a box's edges are far longer.
+    settings.feature_min_length = 0.1 * diagonal;
     return settings;
 }
 
 TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSettings& settings) {
     check_settings(settings);
     const Surface surface = to_surface(closed_mesh);
-    const Domain domain(surface);  // its random generator is CGAL::Random(0): deterministic
-
-    const Criteria::Facet_criteria facets(settings.facet_angle, settings.facet_size, settings.facet_distance);
-    const Criteria::Cell_criteria cells(settings.cell_radius_edge_ratio, settings.cell_size);
-    const Criteria criteria(facets, cells);
+    Domain domain(surface);  // its random generator is CGAL::Random(0): deterministic
+    // Only creases at least as long as a tet and as feature_min_length are protected
+    // (prescore/sharp_features.h).
+    const double min_length = std::max(settings.cell_size, settings.feature_min_length);
+    std::vector<std::vector<Point>> features;
+    for (const Polyline& line : sharp_polylines(closed_mesh, settings.feature_angle, min_length)) {
+        features.emplace_back();
+        for (const Vec3& p : line) features.back().emplace_back(p.x(), p.y(), p.z());
+    }
+    domain.add_features(features.begin(), features.end());
 
     namespace params = CGAL::parameters;
+    const Criteria criteria(params::edge_size = settings.cell_size, params::facet_angle = settings.facet_angle,
+                            params::facet_size = settings.facet_size,
+                            params::facet_distance = settings.facet_distance,
+                            params::cell_radius_edge_ratio = settings.cell_radius_edge_ratio,
+                            params::cell_size = settings.cell_size);
     const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
                                               params::no_lloyd(), params::no_odt());
     TetMesh out = to_tet_mesh(c3t3);

@@ -33,15 +33,14 @@ double total_volume(const TetMesh& m, double* min_volume) {
     return sum;
 }
 
-TEST(Tetrahedralize, UnitCubeTetsArePositiveAndSumToVolumeOneWithinOnePercent) {
+TEST(Tetrahedralize, UnitCubeTetsArePositiveAndSumToExactlyVolumeOne) {
     const TetMesh tets = tetrahedralize(unit_cube(), tetrahedralize_settings_for(std::sqrt(3.0), kDefaultTetResolution));
     ASSERT_GT(tets.tets.size(), 0u);
     double min_volume = 0;
     const double volume = total_volume(tets, &min_volume);
     EXPECT_GT(min_volume, 0.0);
-    // Mesh_3 without feature protection rounds the cube's edges; the loss is bounded by the
-    // facet distance (0.0087 m) times the edge length, well under 1%.
-    EXPECT_NEAR(volume, 1.0, 0.01);
+    // The cube's edges are protected features, so its corners and edges are kept exactly.
+    EXPECT_NEAR(volume, 1.0, 1e-9);
     // Every vertex is used (compacted) and lies in the cube (up to rounding).
     std::vector<bool> used(tets.vertices.size(), false);
     for (const Tet& t : tets.tets)
