@@ -119,6 +119,11 @@ int run(const PrescoreFlags& flags) {
     fmt::print("prescore: {} pieces, {} tets (per piece: {}), {} constraints between {} piece pairs, "
                "{} collision parts, mass {:.4g} kg\n",
                model.pieces.size(), model.mesh.tets.size(), sizes, model.constraints.size(), pairs, parts, mass);
+    if (report.repaired) {
+        const double before = report.input.volume, after = report.tetrahedralized_from.volume;
+        fmt::print("repair:   alpha-wrapped ({}), volume {:.4g} -> {:.4g} m^3 ({:+.1f}%)\n", describe(report.input),
+                   before, after, before > 0 ? 100 * (after / before - 1) : 0.0);
+    }
     fmt::print("time:     {:.3f}s ({})\n", seconds, phases);
     fmt::print("wrote:    {} (model), {} (pieces, one colour each)\n", out, ply);
     return 0;

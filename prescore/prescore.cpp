@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -84,9 +85,31 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     return mesh;
 }
 
+// Mesh_3 drops parts thinner than a tet, which can cut a connected surface into separate
+// clusters of tets. Refused with the real cause rather than a puzzling partition error.
+void refuse_split_by_meshing(const TetTopology& topo, const PrescoreReport& report, const std::string& path) {
+    int32_t components = 0;
+    tet_components(topo, {}, &components);
+    const size_t surface_components = report.tetrahedralized_from.components;
+    if (static_cast<size_t>(components) <= surface_components) return;
+    std::string fix = "raise --resolution so that tets fit in the thin parts";
+    if (report.repaired)
+        fix += ", or raise --wrap-alpha so that the wrap closes the mesh's holes instead of wrapping both sides of "
+               "its walls";
+    throw_input_error(path,
+                      fmt::format("the tets fall apart into {} clusters although the {} has {} component(s): parts "
+                                  "of it are thinner than a tet ({} tets in all)",
+                                  components, report.repaired ? "alpha-wrapped mesh" : "mesh", surface_components,
+                                  topo.neighbour.size()),
+                      fix);
+}
+
 std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& settings, uint64_t mesh_hash) {
+    // The mesh is named by its file name and content hash, not its path: the same inputs give
+    // the same bytes wherever they live (caching, pinned hashes).
     nlohmann::ordered_json j;
     j["mesh"] = to_json(mesh);
+    j["mesh"]["path"] = std::filesystem::path(mesh.path).filename().string();
     j["mesh"]["fnv1a64"] = fmt::format("{:016x}", mesh_hash);
     j["prescore"] = to_json(settings);
     return j.dump();
@@ -137,6 +160,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     timer.lap("tetrahedralize");
 
     TetTopology topo = build_topology(model.mesh);
+    refuse_split_by_meshing(topo, report, mesh_settings.path);
     std::vector<std::array<bool, 4>> cavity;
     if (settings.hollow) {
         report.hollow_thickness = settings.hollow->resolve(report.input.diagonal);

@@ -134,6 +134,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"FlatMesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 3 2\nf 2 3 4\n", "flat.obj",
                 {}, 3, "flat.obj"},
         BadCase{"OpenMeshWithRepairOff", open_cube(), "open.obj", {"--repair", "never"}, 3, "--repair auto"},
+        BadCase{"OpenSoupWrappedIntoASheet", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n",
+                "sheet.obj", {}, 3, "--wrap-alpha"},
         BadCase{"MorePiecesThanTets", kCube, "cube.obj", {"--pieces", "100000"}, 3, "pieces"},
         BadCase{"ZeroThickness", kCube, "cube.obj", {"--hollow", "0"}, 2, "--hollow"},
         BadCase{"NegativeThickness", kCube, "cube.obj", {"--hollow=-0.1"}, 2, "--hollow"},
