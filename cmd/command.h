@@ -14,6 +14,7 @@ using RunCommand = std::function<int()>;
 
 RunCommand add_prescore_command(CLI::App& root);
 RunCommand add_info_command(CLI::App& root);
+RunCommand add_simulate_command(CLI::App& root);
 
 // "DESCRIPTION (unit: UNIT, default: DEFAULT)" for --help texts.
 std::string option_help(const std::string& description, const std::string& unit, const std::string& def);

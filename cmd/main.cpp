@@ -24,7 +24,8 @@ std::string option_help(const std::string& description, const std::string& unit,
 int main(int argc, char** argv) {
     using namespace shatter;
     CLI::App app{"shatter: turns a mesh into a fractured animation (energized rigid-body fracture).\n"
-                 "Stages: prescore (mesh -> pieces and constraints), info (summarize any stage file)."};
+                 "Stages: prescore (mesh -> pieces and constraints), simulate (pieces -> motion and breaks),\n"
+                 "info (summarize any stage file)."};
     app.set_version_flag("--version", std::string("shatter ") + kVersion);
     std::string log_level = "info";
     app.add_option("--log-level", log_level, "diagnostics on stderr: trace, debug, info, warn, error, off (default: info)")
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
         commands[app.get_subcommands({}).back()] = std::move(run);
     };
     add(add_prescore_command);
+    add(add_simulate_command);
     add(add_info_command);
 
     try {

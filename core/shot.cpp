@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/shot_sections.h"
 #include "core/toml_reader.h"
 
 namespace shatter {
@@ -96,6 +97,26 @@ Shot load_shot(const std::string& path) {
     if (const toml::table* t = section("prescore")) {
         TomlSection s(*t, path, "prescore");
         read_prescore(s, shot.prescore);
+    }
+    if (const toml::table* t = section("scene")) {
+        TomlSection s(*t, path, "scene");
+        read_scene_section(s, shot.scene, path);
+    }
+    if (const toml::table* t = section("object")) {
+        TomlSection s(*t, path, "object");
+        read_object_section(s, shot.object);
+    }
+    if (const toml::table* t = section("material")) {
+        TomlSection s(*t, path, "material");
+        read_material_section(s, shot.material);
+    }
+    if (const toml::table* t = section("simulate")) {
+        TomlSection s(*t, path, "simulate");
+        read_simulate_section(s, shot.simulate);
+    }
+    if (const toml::table* t = section("render")) {
+        TomlSection s(*t, path, "render");
+        read_render_section(s, shot.render);
     }
     top.finish();
     return shot;

@@ -1,0 +1,57 @@
+// Settings of render: the shot's [render] section (docs/shot.md) and the flags of
+// `shatter render`. Owned by the render stage's design (docs/render.md); defaults give a
+// 1280x720 review render with a shadowed key light and 4x MSAA. Colours are written as sRGB
+// ("#rrggbb", as a colour picker shows them) and held here as linear RGB in [0, 1].
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/geometry.h"
+#include "core/settings.h"
+
+namespace shatter {
+
+enum class ColourMode { Pieces, Material };  // pieces: the palette by piece id; material: one colour
+
+struct RenderSettings {
+    uint32_t width = 1280;   // (unit: pixels)
+    uint32_t height = 720;   // (unit: pixels)
+    // The camera; both unset: framed on the whole animation (its bounds over every frame). A
+    // position without a target looks at the centre of those bounds.
+    std::optional<Vec3> camera_position;  // (unit: m, world)
+    std::optional<Vec3> camera_target;    // (unit: m, world)
+    double fov = 35;                      // vertical field of view (unit: degrees)
+    bool shadows = true;                  // the key light casts shadows (shadow map)
+    uint32_t shadow_map = 2048;           // shadow map width and height (unit: texels)
+    uint32_t msaa = 4;                    // samples per pixel: 1 (off), 2 or 4
+    double key_azimuth = -40;             // key light direction, from the camera's direction about +Y, positive to the right (unit: degrees)
+    double key_elevation = 50;            // key light height above the horizon (unit: degrees)
+    ColourMode colour_mode = ColourMode::Pieces;
+    std::array<float, 3> material_colour = {0.7084f, 0.6514f, 0.5520f};  // linear RGB ("#dbd3c4")
+    double fracture_tint = 0.55;          // fracture faces: this fraction of the way from the piece colour to white (unit: 1)
+    double cavity_shade = 0.45;           // cavity faces: the piece colour times this (unit: 1)
+    std::array<float, 3> background = {0.5776f, 0.6445f, 0.7231f};  // linear RGB ("#c8d2dd")
+};
+inline constexpr Limits kImageSizeLimits{1, 16384, "pixels"};
+inline constexpr Limits kFovLimits{1, 170, "degrees"};
+inline constexpr Limits kShadowMapLimits{64, 8192, "texels"};
+inline constexpr Limits kAzimuthLimits{-360, 360, "degrees"};
+inline constexpr Limits kElevationLimits{1, 90, "degrees"};
+inline constexpr Limits kTintLimits{0, 1, "(fraction)"};
+
+const char* to_string(ColourMode m);
+std::optional<ColourMode> parse_colour_mode(const std::string& text);
+// "#rrggbb" (sRGB) to linear RGB; nullopt when the text is not of that form.
+std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text);
+std::string srgb_hex(const std::array<float, 3>& linear);
+// Throws Error(Usage when from a flag, else BadInput) when msaa is not 1, 2 or 4.
+void check_msaa(const std::string& where, uint32_t msaa, bool from_flag);
+
+nlohmann::ordered_json to_json(const RenderSettings& s);
+
+}  // namespace shatter

@@ -1,0 +1,148 @@
+// Settings of the simulated scene, the fracturable object, its material and the simulation:
+// the shot's [scene], [[scene.colliders]], [[scene.kinematic]], [object], [material] and
+// [simulate] sections (docs/shot.md). Physical units throughout; nothing here changes meaning
+// with the time step. The trajectory file carries these settings as JSON (to_json/from_json),
+// so that render draws exactly the scene that was simulated.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/geometry.h"
+#include "core/settings.h"
+
+namespace shatter {
+
+enum class ShapeKind { Box, Sphere, Plane, Mesh };
+
+struct ShapeSettings {
+    ShapeKind kind = ShapeKind::Box;
+    Vec3 size = Vec3(1, 1, 1);  // box: full extents (unit: m)
+    double radius = 0.5;        // sphere (unit: m)
+    std::string mesh;           // mesh (static colliders only): file, relative to the shot's folder
+    double mesh_scale = 1;      // mesh: metres per mesh unit (unit: m)
+    // plane: the plane through the pose's position whose normal is the pose's rotation of +Y
+};
+
+struct Pose {
+    Vec3 position = Vec3::Zero();      // (unit: m)
+    Vec3 rotation_deg = Vec3::Zero();  // Euler angles applied X, then Y, then Z (unit: degrees)
+};
+Mat3 rotation_matrix(const Vec3& rotation_deg);
+
+struct SurfaceSettings {
+    double friction = 0.5;     // Coulomb friction coefficient (unit: 1)
+    double restitution = 0.0;  // (unit: 1, 0 to 1)
+};
+
+struct ColliderSettings {  // static
+    std::string name;
+    ShapeSettings shape;
+    Pose pose;
+    SurfaceSettings surface;
+    std::array<float, 3> colour = {0.6f, 0.6f, 0.6f};  // linear RGB for render
+};
+
+struct KeyFrame {
+    double time = 0;               // (unit: s)
+    Vec3 position = Vec3::Zero();  // (unit: m)
+};
+
+struct KinematicSettings {  // moved by script, pushes dynamic bodies, is not pushed
+    std::string name;
+    ShapeSettings shape;  // box or sphere
+    Pose pose;            // at t = 0 (the rotation is kept)
+    Vec3 velocity = Vec3::Zero();  // constant velocity when `keys` is empty (unit: m/s)
+    std::vector<KeyFrame> keys;    // else positions at times, linear between, held after the last
+    SurfaceSettings surface;
+    std::array<float, 3> colour = {0.15f, 0.3f, 0.8f};
+};
+// The kinematic body's position at time t (unit: m).
+Vec3 kinematic_position(const KinematicSettings& k, double t);
+
+struct SceneSettings {
+    Vec3 gravity = Vec3(0, -9.81, 0);  // (unit: m/s^2)
+    bool ground = true;                // an infinite ground plane y = ground_height
+    double ground_height = 0;          // (unit: m)
+    SurfaceSettings ground_surface{0.5, 0.1};
+    std::vector<ColliderSettings> colliders;
+    std::vector<KinematicSettings> kinematic;
+};
+
+// A piece of the object that the scene moves instead of the solver (the chain's end cubes, an
+// anchor): it is not pushed, takes no energizing impulse, and its constraints still break.
+struct PieceDriveSettings {
+    uint32_t piece = 0;
+    bool fixed = false;            // true: never moves (static)
+    Vec3 velocity = Vec3::Zero();  // constant velocity when `keys` is empty (unit: m/s)
+    std::vector<KeyFrame> keys;    // else offsets from its start position at times (unit: s, m)
+};
+
+// Where the fracturable object starts: model coordinates x go to R x + position.
+struct ObjectSettings {
+    Pose pose;
+    Vec3 velocity = Vec3::Zero();          // initial linear velocity of every piece (unit: m/s)
+    Vec3 angular_velocity = Vec3::Zero();  // initial angular velocity about the object's centre of mass (unit: rad/s)
+    std::vector<PieceDriveSettings> driven;  // [[object.driven]]
+};
+// The offset of a driven piece from its start position at time t (unit: m).
+Vec3 drive_offset(const PieceDriveSettings& d, double t);
+
+// Constraint properties per unit of the area a constraint stands for (prescore's area share):
+// a constraint with area A has stiffness k = stiffness * A, damping c = damping * A and breaks
+// when its force exceeds strength * A. docs/physics.md relates them to Young's modulus and
+// tensile strength (stiffness ~ E / l, l the tet size).
+struct MaterialSettings {
+    std::optional<double> density;  // (unit: kg/m^3) default: the model's density
+    double stiffness = 1e10;        // (unit: N/m per m^2 = N/m^3)
+    double damping = 0;             // (unit: N s/m per m^2)
+    double strength = 1e6;          // tensile strength (unit: Pa = N/m^2)
+    double alpha = 1.0;             // fraction of stored energy given back at a break (unit: 1, >= 0)
+    SurfaceSettings surface{0.5, 0.1};
+};
+inline constexpr Limits kStiffnessLimits{1e-3, 1e18, "N/m^3"};
+inline constexpr Limits kDampingLimits{0, 1e15, "N s/m^3"};
+inline constexpr Limits kStrengthLimits{0, 1e12, "Pa"};
+inline constexpr Limits kAlphaLimits{0, 100, "(fraction of stored energy)"};
+inline constexpr Limits kFrictionLimits{0, 10, ""};
+inline constexpr Limits kRestitutionLimits{0, 1, ""};
+
+enum class EnergySplitMode { Total, PerBody };
+enum class KickDirectionMode { Paper, Opposed };
+
+struct SimulateSettings {
+    double duration = 4.0;      // (unit: s)
+    double fps = 30;            // frames recorded per second (unit: 1/s)
+    uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
+    uint32_t iterations = 20;   // sequential-impulse iterations per step
+    EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
+    KickDirectionMode directions = KickDirectionMode::Paper;  // "paper": -(t x f) per body; "opposed": momentum-conserving
+    double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
+    bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
+    uint64_t seed = 1;          // seed of the random kick directions
+    double max_cfm = 0.5;       // refuse settings whose constraints would need a larger CFM (unit: 1)
+};
+inline constexpr Limits kDurationLimits{1e-3, 3600, "s"};
+inline constexpr Limits kFpsLimits{1, 1000, "frames/s"};
+inline constexpr Limits kSubstepsLimits{1, 10000, "steps per frame"};
+inline constexpr Limits kIterationsLimits{1, 10000, "iterations"};
+inline constexpr Limits kRateLimitLimits{0, 3600, "s"};
+inline constexpr Limits kMaxCfmLimits{1e-6, 0.99, ""};
+
+nlohmann::ordered_json to_json(const SceneSettings& s);
+nlohmann::ordered_json to_json(const ObjectSettings& s);
+nlohmann::ordered_json to_json(const MaterialSettings& s);
+nlohmann::ordered_json to_json(const SimulateSettings& s);
+// Inverse of to_json(SceneSettings); throws Error(BadInput) naming `source` on a malformed value.
+SceneSettings scene_from_json(const nlohmann::json& j, const std::string& source);
+
+const char* to_string(ShapeKind k);
+const char* to_string(EnergySplitMode m);
+const char* to_string(KickDirectionMode m);
+
+}  // namespace shatter

@@ -1,0 +1,22 @@
+// What happens to one constraint that the break policy picked, after it left the world:
+// its stored energy goes back to its two pieces as impulses at the pivot (energized_fracture.h),
+// and the break is recorded with the kinetic energy the impulses actually added.
+#pragma once
+
+#include <array>
+
+#include "simulate/bullet_world.h"
+#include "simulate/simulate.h"
+
+namespace shatter {
+
+// `load` holds the two bodies' force and torque from the step in which the constraint broke
+// (bodies_at_pivot before any rollback); positions and inertia are taken from the world as it
+// is now. `key` seeds the random direction of a pure-tension break.
+BreakRecord energize_broken(BulletWorld& world, size_t constraint, const std::array<BodyAtPivot, 2>& load,
+                            const EnergizeSettings& settings, uint64_t key);
+
+// The seed of constraint c's random kick direction.
+uint64_t break_key(uint64_t seed, size_t constraint);
+
+}  // namespace shatter

@@ -1,0 +1,554 @@
+#include "simulate/bullet_world.h"
+
+#include <BulletCollision/CollisionShapes/btShapeHull.h>
+#include <LinearMath/btConvexHullComputer.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <set>
+#include <functional>
+
+#include "core/error.h"
+#include "prescore/mesh_load.h"
+#include "simulate/bullet_convert.h"
+#include "simulate/compliant_constraint.h"
+#include "simulate/spring.h"
+
+namespace shatter {
+
+namespace {
+
+// A scripted body: its transform at the world's current clock.
+class ScriptedMotion : public btMotionState {
+public:
+    ScriptedMotion(const double* clock, btTransform start, std::function<Vec3(double)> offset)
+        : clock_(clock), start_(start), offset_(std::move(offset)) {}
+    void getWorldTransform(btTransform& t) const override {
+        t = start_;
+        t.setOrigin(start_.getOrigin() + to_bullet(offset_(*clock_)));
+    }
+    void setWorldTransform(const btTransform&) override {}
+
+private:
+    const double* clock_;
+    btTransform start_;
+    std::function<Vec3(double)> offset_;
+};
+
+// Skips the narrow phase for pairs of pieces that overlapped where they started without being
+// joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
+// contact would push them apart, load their constraints and break them in free fall. A pair is
+// released once its bounding boxes part.
+class PieceDispatcher : public btCollisionDispatcher {
+public:
+    using btCollisionDispatcher::btCollisionDispatcher;
+    std::set<std::pair<int, int>> ignored;
+    bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
+        if (!ignored.empty() && a->getUserIndex() >= 0 && b->getUserIndex() >= 0 &&
+            ignored.count(std::minmax(a->getUserIndex(), b->getUserIndex())))
+            return false;
+        return btCollisionDispatcher::needsCollision(a, b);
+    }
+};
+
+struct ContactFound : btCollisionWorld::ContactResultCallback {
+    double threshold;
+    bool found = false;
+    explicit ContactFound(double t) : threshold(t) {}
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+        if (p.getDistance() < threshold) found = true;
+        return 0;
+    }
+};
+
+btTransform make_transform(const Mat3& r, const Vec3& p) { return btTransform(to_bullet_matrix(r), to_bullet(p)); }
+
+// The margin of a piece's convex parts: small against the piece (Bullet's default 4 cm would
+// swallow a 5 cm piece), bounded for GJK's sake.
+double collision_margin(double volume) { return std::clamp(0.02 * std::cbrt(volume), 1e-4, 0.04); }
+
+// A convex part in body coordinates, shrunk by the margin so that hull + margin is the part.
+btConvexHullShape* make_part(const ConvexPart& part, const Mat3& principal, const Vec3& center, double margin) {
+    std::vector<double> coords;
+    for (const Vec3& p : part.points) {
+        const Vec3 local = principal.transpose() * (p - center);
+        coords.insert(coords.end(), {local.x(), local.y(), local.z()});
+    }
+    btConvexHullComputer hull;
+    const btScalar shrunk = hull.compute(coords.data(), 3 * sizeof(double), int(part.points.size()), btScalar(margin),
+                                         btScalar(0.25));
+    auto* shape = new btConvexHullShape();
+    if (shrunk >= 0 && hull.vertices.size() >= 4) {
+        for (int i = 0; i < hull.vertices.size(); ++i) shape->addPoint(hull.vertices[i], false);
+        shape->setMargin(shrunk);
+    } else {  // too thin to shrink: the part as it is, with a tiny margin
+        for (size_t i = 0; i < part.points.size(); ++i)
+            shape->addPoint(btVector3(btScalar(coords[3 * i]), btScalar(coords[3 * i + 1]), btScalar(coords[3 * i + 2])),
+                            false);
+        shape->setMargin(btScalar(1e-4));
+    }
+    shape->recalcLocalAabb();
+    return shape;
+}
+
+// Principal frame of an inertia tensor: a right-handed rotation R (columns = axes) and the
+// principal moments, I = R diag(moments) R^T.
+void principal_frame(const Mat3& inertia, Mat3* r, Vec3* moments) {
+    Eigen::SelfAdjointEigenSolver<Mat3> eigen(inertia);
+    *r = eigen.eigenvectors();
+    *moments = eigen.eigenvalues();
+    for (int c = 0; c < 3; ++c) {  // a sign that does not depend on the solver: largest component positive
+        Eigen::Index k = 0;
+        r->col(c).cwiseAbs().maxCoeff(&k);
+        if ((*r)(k, c) < 0) r->col(c) = -r->col(c);
+    }
+    if (r->determinant() < 0) r->col(2) = -r->col(2);
+}
+
+}  // namespace
+
+struct BulletWorld::Impl {
+    btDefaultCollisionConfiguration config;
+    PieceDispatcher dispatcher{&config};
+    btDbvtBroadphase broadphase;
+    btSequentialImpulseConstraintSolver solver;
+    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+
+    struct PieceBody {
+        btRigidBody* body = nullptr;
+        Mat3 principal = Mat3::Identity();  // body axes in the model frame
+        Vec3 model_center = Vec3::Zero();
+        bool dynamic = true;
+    };
+    struct Joint {
+        std::unique_ptr<CompliantPointConstraint> constraint;  // null when both ends are scripted
+        uint32_t piece_a = 0, piece_b = 0;
+        double strength = 0;
+        bool active = false;
+    };
+    std::vector<PieceBody> pieces;
+    std::vector<btRigidBody*> props;
+    std::vector<Joint> joints;
+    std::vector<std::unique_ptr<btCollisionShape>> shapes;
+    std::vector<std::unique_ptr<btMotionState>> motions;
+    std::vector<std::unique_ptr<btRigidBody>> bodies;
+    std::vector<std::unique_ptr<btTriangleIndexVertexArray>> triangle_arrays;
+    std::vector<TriangleMesh> collider_meshes;
+    Vec3 gravity = Vec3::Zero();
+
+    static double stored_energy_of(const Joint& j);
+
+    btRigidBody* add_body(double mass, const btVector3& inertia, btCollisionShape* shape, const btTransform& t,
+                          btMotionState* motion, const SurfaceSettings& surface) {
+        btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motion, shape, inertia);
+        info.m_startWorldTransform = t;
+        info.m_friction = btScalar(surface.friction);
+        info.m_restitution = btScalar(surface.restitution);
+        auto body = std::make_unique<btRigidBody>(info);
+        if (!motion) body->setWorldTransform(t);
+        body->setActivationState(DISABLE_DEACTIVATION);
+        world.addRigidBody(body.get());
+        bodies.push_back(std::move(body));
+        return bodies.back().get();
+    }
+};
+
+BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup) : impl_(std::make_unique<Impl>()), setup_(setup) {
+    Impl& m = *impl_;
+    m.gravity = setup.scene.gravity;
+    m.world.setGravity(to_bullet(setup.scene.gravity));
+    btContactSolverInfo& info = m.world.getSolverInfo();
+    info.m_numIterations = int(setup.iterations);
+    info.m_splitImpulse = 1;  // penetration is resolved without adding kinetic energy
+    info.m_splitImpulsePenetrationThreshold = 0;
+
+    // Static scene.
+    if (setup.scene.ground) {
+        m.shapes.emplace_back(new btStaticPlaneShape(btVector3(0, 1, 0), btScalar(setup.scene.ground_height)));
+        m.add_body(0, btVector3(0, 0, 0), m.shapes.back().get(), btTransform::getIdentity(), nullptr,
+                   setup.scene.ground_surface);
+    }
+    for (const ColliderSettings& c : setup.scene.colliders) {
+        btCollisionShape* shape = nullptr;
+        const ShapeSettings& s = c.shape;
+        switch (s.kind) {
+            case ShapeKind::Box: shape = new btBoxShape(to_bullet(0.5 * s.size)); break;
+            case ShapeKind::Sphere: shape = new btSphereShape(btScalar(s.radius)); break;
+            case ShapeKind::Plane: shape = new btStaticPlaneShape(btVector3(0, 1, 0), 0); break;
+            case ShapeKind::Mesh: {
+                m.collider_meshes.push_back(load_mesh(s.mesh, s.mesh_scale));
+                TriangleMesh& tm = m.collider_meshes.back();
+                auto arr = std::make_unique<btTriangleIndexVertexArray>(
+                    int(tm.triangles.size()), reinterpret_cast<int*>(tm.triangles.data()), int(3 * sizeof(uint32_t)),
+                    int(tm.vertices.size()), reinterpret_cast<btScalar*>(tm.vertices.data()), int(3 * sizeof(double)));
+                shape = new btBvhTriangleMeshShape(arr.get(), true);
+                m.triangle_arrays.push_back(std::move(arr));
+                break;
+            }
+        }
+        m.shapes.emplace_back(shape);
+        m.add_body(0, btVector3(0, 0, 0), shape, make_transform(rotation_matrix(c.pose.rotation_deg), c.pose.position),
+                   nullptr, c.surface);
+    }
+    // Props: scripted boxes and spheres.
+    for (const KinematicSettings& k : setup.scene.kinematic) {
+        btCollisionShape* shape = k.shape.kind == ShapeKind::Sphere
+                                      ? static_cast<btCollisionShape*>(new btSphereShape(btScalar(k.shape.radius)))
+                                      : new btBoxShape(to_bullet(0.5 * k.shape.size));
+        m.shapes.emplace_back(shape);
+        const btTransform start = make_transform(rotation_matrix(k.pose.rotation_deg), Vec3::Zero());
+        const KinematicSettings prop = k;
+        m.motions.emplace_back(new ScriptedMotion(&time_, start, [prop](double t) { return kinematic_position(prop, t); }));
+        btRigidBody* body = m.add_body(0, btVector3(0, 0, 0), shape, start, m.motions.back().get(), k.surface);
+        body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+        m.props.push_back(body);
+    }
+    build_pieces(model);
+    build_joints(model);
+    ignore_initial_overlaps();
+}
+
+void BulletWorld::ignore_initial_overlaps() {
+    Impl& m = *impl_;
+    std::vector<btVector3> lo(m.pieces.size()), hi(m.pieces.size());
+    for (size_t i = 0; i < m.pieces.size(); ++i) m.pieces[i].body->getAabb(lo[i], hi[i]);
+    for (size_t i = 0; i < m.pieces.size(); ++i)
+        for (size_t j = i + 1; j < m.pieces.size(); ++j) {
+            if (!TestAabbAgainstAabb2(lo[i], hi[i], lo[j], hi[j])) continue;
+            btRigidBody* a = m.pieces[i].body;
+            btRigidBody* b = m.pieces[j].body;
+            if (!a->checkCollideWith(b)) continue;  // joined: never collide while joined
+            ContactFound contact(1e-4);
+            m.world.contactPairTest(a, b, contact);
+            if (contact.found) m.dispatcher.ignored.insert({int(i), int(j)});
+        }
+}
+
+void BulletWorld::release_parted_pairs() {
+    Impl& m = *impl_;
+    for (auto it = m.dispatcher.ignored.begin(); it != m.dispatcher.ignored.end();) {
+        btVector3 lo_a, hi_a, lo_b, hi_b;
+        m.pieces[size_t(it->first)].body->getAabb(lo_a, hi_a);
+        m.pieces[size_t(it->second)].body->getAabb(lo_b, hi_b);
+        it = TestAabbAgainstAabb2(lo_a, hi_a, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
+    }
+}
+
+BulletWorld::~BulletWorld() {
+    Impl& m = *impl_;
+    for (auto& j : m.joints)
+        if (j.active && j.constraint) m.world.removeConstraint(j.constraint.get());
+    for (auto& b : m.bodies) m.world.removeRigidBody(b.get());
+}
+
+}  // namespace shatter
+
+namespace shatter {
+
+void BulletWorld::build_pieces(const Model& model) {
+    Impl& m = *impl_;
+    const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
+    const Vec3 t_obj = setup_.object.pose.position;
+    const double scale = setup_.material.density ? *setup_.material.density / model.density : 1.0;
+    std::vector<const PieceDriveSettings*> drive(model.pieces.size(), nullptr);
+    for (const PieceDriveSettings& d : setup_.object.driven) {
+        if (d.piece >= model.pieces.size())
+            throw_input_error("[[object.driven]] piece", "piece " + std::to_string(d.piece) + " does not exist (the model has " +
+                                                              std::to_string(model.pieces.size()) + " pieces)",
+                              "use a piece index from `shatter info MODEL`");
+        drive[d.piece] = &d;
+    }
+    // The object's centre of mass, about which its initial angular velocity turns it.
+    Vec3 com = Vec3::Zero();
+    double total = 0;
+    for (const Piece& p : model.pieces) com += p.mass.mass * p.mass.center, total += p.mass.mass;
+    com = r_obj * (total > 0 ? com / total : com) + t_obj;
+
+    m.pieces.resize(model.pieces.size());
+    for (uint32_t i = 0; i < model.pieces.size(); ++i) {
+        const Piece& piece = model.pieces[i];
+        Impl::PieceBody& pb = m.pieces[i];
+        Vec3 moments;
+        principal_frame(piece.mass.inertia, &pb.principal, &moments);
+        pb.model_center = piece.mass.center;
+        const double mass = piece.mass.mass * scale;
+        moments = (moments * scale).cwiseMax(1e-12 * mass * std::pow(std::cbrt(piece.mass.volume), 2));
+        auto* compound = new btCompoundShape();
+        m.shapes.emplace_back(compound);
+        const double margin = collision_margin(piece.mass.volume);
+        for (const ConvexPart& part : piece.collision) {
+            btConvexHullShape* child = make_part(part, pb.principal, piece.mass.center, margin);
+            m.shapes.emplace_back(child);
+            compound->addChildShape(btTransform::getIdentity(), child);
+        }
+        const Vec3 position = r_obj * piece.mass.center + t_obj;
+        const btTransform start = make_transform(r_obj * pb.principal, position);
+        const PieceDriveSettings* d = drive[i];
+        pb.dynamic = d == nullptr;
+        btRigidBody* body = nullptr;
+        if (pb.dynamic) {
+            body = m.add_body(mass, to_bullet(moments), compound, start, nullptr, setup_.material.surface);
+            const Vec3 w = setup_.object.angular_velocity;
+            body->setLinearVelocity(to_bullet(setup_.object.velocity + w.cross(position - com)));
+            body->setAngularVelocity(to_bullet(w));
+        } else if (d->fixed) {
+            body = m.add_body(0, btVector3(0, 0, 0), compound, start, nullptr, setup_.material.surface);
+        } else {
+            const PieceDriveSettings drive_copy = *d;
+            m.motions.emplace_back(
+                new ScriptedMotion(&time_, start, [drive_copy](double t) { return drive_offset(drive_copy, t); }));
+            body = m.add_body(0, btVector3(0, 0, 0), compound, start, m.motions.back().get(), setup_.material.surface);
+            body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+        }
+        body->setUserIndex(int(i));
+        pb.body = body;
+    }
+}
+
+void BulletWorld::build_joints(const Model& model) {
+    Impl& m = *impl_;
+    const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
+    const Vec3 t_obj = setup_.object.pose.position;
+    m.joints.resize(model.constraints.size());
+    for (size_t i = 0; i < model.constraints.size(); ++i) {
+        const Constraint& c = model.constraints[i];
+        Impl::Joint& j = m.joints[i];
+        j.piece_a = c.piece_a;
+        j.piece_b = c.piece_b;
+        j.strength = setup_.material.strength * c.area;
+        const Impl::PieceBody& a = m.pieces[c.piece_a];
+        const Impl::PieceBody& b = m.pieces[c.piece_b];
+        if ((!a.dynamic && !b.dynamic) || !(c.area > 0)) continue;  // nothing to solve
+        const btVector3 pivot = to_bullet(r_obj * c.pivot + t_obj);
+        j.constraint = std::make_unique<CompliantPointConstraint>(
+            *a.body, *b.body, a.body->getWorldTransform().inverse() * pivot, b.body->getWorldTransform().inverse() * pivot,
+            setup_.material.stiffness * c.area, setup_.material.damping * c.area, setup_.h);
+        m.world.addConstraint(j.constraint.get(), true);
+        j.active = true;
+    }
+}
+
+void BulletWorld::step() {
+    time_ += setup_.h;
+    impl_->world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
+    release_parted_pairs();
+}
+
+struct BulletWorld::Snapshot {
+    struct Body {
+        btTransform transform, interpolation;
+        btVector3 linear, angular, interpolation_linear, interpolation_angular;
+    };
+    std::vector<Body> bodies;
+    double time = 0;
+};
+
+std::shared_ptr<BulletWorld::Snapshot> BulletWorld::save() const {
+    auto s = std::make_shared<Snapshot>();
+    s->time = time_;
+    for (const auto& b : impl_->bodies)
+        s->bodies.push_back({b->getWorldTransform(), b->getInterpolationWorldTransform(), b->getLinearVelocity(),
+                             b->getAngularVelocity(), b->getInterpolationLinearVelocity(),
+                             b->getInterpolationAngularVelocity()});
+    return s;
+}
+
+void BulletWorld::restore(const Snapshot& s) {
+    time_ = s.time;
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
+        btRigidBody& b = *impl_->bodies[i];
+        const Snapshot::Body& v = s.bodies[i];
+        b.setWorldTransform(v.transform);
+        b.setInterpolationWorldTransform(v.interpolation);
+        b.setLinearVelocity(v.linear);
+        b.setAngularVelocity(v.angular);
+        b.setInterpolationLinearVelocity(v.interpolation_linear);
+        b.setInterpolationAngularVelocity(v.interpolation_angular);
+        if (b.getMotionState()) b.getMotionState()->setWorldTransform(v.transform);
+        b.updateInertiaTensor();
+    }
+}
+
+size_t BulletWorld::constraint_count() const { return impl_->joints.size(); }
+bool BulletWorld::active(size_t c) const { return impl_->joints[c].active; }
+double BulletWorld::strength(size_t c) const { return impl_->joints[c].strength; }
+double BulletWorld::stiffness(size_t c) const {
+    const auto& j = impl_->joints[c];
+    return j.constraint ? j.constraint->stiffness() : 0.0;
+}
+Vec3 BulletWorld::force_on_a(size_t c) const {
+    const auto& j = impl_->joints[c];
+    return j.constraint ? to_eigen(j.constraint->feedback().m_appliedForceBodyA) : Vec3::Zero();
+}
+double BulletWorld::max_cfm(size_t c) const {
+    const auto& j = impl_->joints[c];
+    return j.constraint ? j.constraint->last_max_cfm() : 0.0;
+}
+
+double BulletWorld::current_max_cfm(size_t c, double* min_w) const {
+    const auto& j = impl_->joints[c];
+    *min_w = 0;
+    if (!j.constraint) return 0;
+    const CompliantPointConstraint& k = *j.constraint;
+    const btRigidBody& a = k.getRigidBodyA();
+    const btRigidBody& b = k.getRigidBodyB();
+    const Vec3 ra = to_eigen(a.getWorldTransform().getBasis() * k.getPivotInA());
+    const Vec3 rb = to_eigen(b.getWorldTransform().getBasis() * k.getPivotInB());
+    double cfm = 0;
+    *min_w = INFINITY;
+    for (int r = 0; r < 3; ++r) {
+        const double w = row_inverse_mass(a.getInvMass(), to_eigen(a.getInvInertiaTensorWorld()), ra, b.getInvMass(),
+                                          to_eigen(b.getInvInertiaTensorWorld()), rb, Vec3::Unit(r));
+        *min_w = std::min(*min_w, w);
+        cfm = std::max(cfm, spring_cfm(k.stiffness(), k.damping(), setup_.h, w));
+    }
+    return cfm;
+}
+
+uint32_t BulletWorld::piece_a(size_t c) const { return impl_->joints[c].piece_a; }
+uint32_t BulletWorld::piece_b(size_t c) const { return impl_->joints[c].piece_b; }
+
+void BulletWorld::remove_constraint(size_t c) {
+    auto& j = impl_->joints[c];
+    if (!j.active) return;
+    impl_->world.removeConstraint(j.constraint.get());
+    j.active = false;
+}
+
+std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) const {
+    const auto& j = impl_->joints[c];
+    const CompliantPointConstraint& k = *j.constraint;
+    const btRigidBody& a = k.getRigidBodyA();
+    const btRigidBody& b = k.getRigidBodyB();
+    *pivot = 0.5 * (to_eigen(a.getWorldTransform() * k.getPivotInA()) + to_eigen(b.getWorldTransform() * k.getPivotInB()));
+    const btJointFeedback& fb = k.feedback();
+    std::array<BodyAtPivot, 2> out;
+    const btRigidBody* body[2] = {&a, &b};
+    const uint32_t piece[2] = {j.piece_a, j.piece_b};
+    const btVector3 force[2] = {fb.m_appliedForceBodyA, fb.m_appliedForceBodyB};
+    const btVector3 torque[2] = {fb.m_appliedTorqueBodyA, fb.m_appliedTorqueBodyB};
+    for (int s = 0; s < 2; ++s) {
+        BodyAtPivot& p = out[s];
+        p.dynamic = impl_->pieces[piece[s]].dynamic;
+        p.inv_mass = body[s]->getInvMass();
+        p.inv_inertia = to_eigen(body[s]->getInvInertiaTensorWorld());
+        p.r = *pivot - to_eigen(body[s]->getCenterOfMassPosition());
+        p.force = to_eigen(force[s]);
+        p.torque = to_eigen(torque[s]);
+    }
+    return out;
+}
+
+void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks) {
+    const auto& j = impl_->joints[c];
+    const uint32_t piece[2] = {j.piece_a, j.piece_b};
+    for (int s = 0; s < 2; ++s) {
+        if (!impl_->pieces[piece[s]].dynamic || kicks.kick[s].magnitude == 0) continue;
+        btRigidBody* body = impl_->pieces[piece[s]].body;
+        body->applyImpulse(to_bullet(kicks.kick[s].impulse), to_bullet(pivot) - body->getCenterOfMassPosition());
+    }
+}
+
+namespace {
+
+double body_kinetic_energy(const btRigidBody& b) {
+    const Vec3 v = to_eigen(b.getLinearVelocity()), w = to_eigen(b.getAngularVelocity());
+    const Mat3 inv_i = to_eigen(b.getInvInertiaTensorWorld());
+    return 0.5 * v.squaredNorm() / b.getInvMass() + 0.5 * w.dot(inv_i.inverse() * w);
+}
+
+}  // namespace
+
+double BulletWorld::kinetic_energy() const {
+    double e = 0;
+    for (const auto& p : impl_->pieces)
+        if (p.dynamic) e += body_kinetic_energy(*p.body);
+    return e;
+}
+
+double BulletWorld::kinetic_energy_of_pair(size_t c) const {
+    const auto& j = impl_->joints[c];
+    double e = 0;
+    for (uint32_t p : {j.piece_a, j.piece_b})
+        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body);
+    return e;
+}
+
+double BulletWorld::potential_energy() const {
+    double e = 0;
+    for (const auto& p : impl_->pieces)
+        if (p.dynamic) e -= impl_->gravity.dot(to_eigen(p.body->getCenterOfMassPosition())) / p.body->getInvMass();
+    return e;
+}
+
+double BulletWorld::Impl::stored_energy_of(const Joint& j) {
+    const Vec3 f = to_eigen(j.constraint->feedback().m_appliedForceBodyA);
+    return shatter::stored_energy(f, j.constraint->stiffness());
+}
+
+double BulletWorld::stored_energy() const {
+    double e = 0;
+    for (const auto& j : impl_->joints)
+        if (j.active) e += Impl::stored_energy_of(j);
+    return e;
+}
+
+Vec3 BulletWorld::linear_momentum() const {
+    Vec3 p = Vec3::Zero();
+    for (const auto& pb : impl_->pieces)
+        if (pb.dynamic) p += to_eigen(pb.body->getLinearVelocity()) / pb.body->getInvMass();
+    return p;
+}
+
+Vec3 BulletWorld::angular_momentum() const {
+    Vec3 l = Vec3::Zero();
+    for (const auto& pb : impl_->pieces) {
+        if (!pb.dynamic) continue;
+        const btRigidBody& b = *pb.body;
+        const Vec3 x = to_eigen(b.getCenterOfMassPosition());
+        const Vec3 v = to_eigen(b.getLinearVelocity());
+        const Mat3 inv_i = to_eigen(b.getInvInertiaTensorWorld());
+        l += x.cross(v / b.getInvMass()) + inv_i.inverse() * to_eigen(b.getAngularVelocity());
+    }
+    return l;
+}
+
+bool BulletWorld::finite() const {
+    for (const auto& pb : impl_->pieces) {
+        const btRigidBody& b = *pb.body;
+        if (!to_eigen(b.getCenterOfMassPosition()).allFinite() || !to_eigen(b.getLinearVelocity()).allFinite() ||
+            !to_eigen(b.getAngularVelocity()).allFinite())
+            return false;
+    }
+    return true;
+}
+
+BodyPose BulletWorld::piece_pose(uint32_t i) const {
+    const auto& pb = impl_->pieces[i];
+    const btTransform& t = pb.body->getWorldTransform();
+    const Mat3 r = to_eigen(t.getBasis()) * pb.principal.transpose();
+    BodyPose pose;
+    pose.position = to_eigen(t.getOrigin()).cast<float>();
+    pose.rotation = Eigen::Quaterniond(r).normalized().cast<float>();
+    return pose;
+}
+
+BodyPose BulletWorld::prop_pose(uint32_t i) const {
+    const btTransform& t = impl_->props[i]->getWorldTransform();
+    BodyPose pose;
+    pose.position = to_eigen(t.getOrigin()).cast<float>();
+    pose.rotation = Eigen::Quaterniond(to_eigen(t.getBasis())).normalized().cast<float>();
+    return pose;
+}
+
+Vec3 BulletWorld::piece_velocity(uint32_t i) const { return to_eigen(impl_->pieces[i].body->getLinearVelocity()); }
+Vec3 BulletWorld::piece_position(uint32_t i) const {
+    return to_eigen(impl_->pieces[i].body->getCenterOfMassPosition());
+}
+uint32_t BulletWorld::pieces() const { return uint32_t(impl_->pieces.size()); }
+uint32_t BulletWorld::props() const { return uint32_t(impl_->props.size()); }
+bool BulletWorld::piece_dynamic(uint32_t i) const { return impl_->pieces[i].dynamic; }
+
+}  // namespace shatter

@@ -1,0 +1,102 @@
+// The Bullet adapter: builds a btDiscreteDynamicsWorld (double precision) from a model and the
+// scene, steps it one solver step at a time, and exposes what breaking, energizing and recording
+// need. The physics decisions live in the engine-free files (spring.h, energized_fracture.h,
+// break_policy.h); this file only translates.
+//
+// Bodies: each piece is a rigid body whose frame is its principal frame at its centre of mass,
+// shaped as a compound of its convex collision parts (shrunk by the collision margin, so that
+// hull + margin is the part itself). Driven pieces ([[object.driven]]) are kinematic (or
+// static); props ([[scene.kinematic]]) are kinematic boxes or spheres; colliders and the ground
+// are static.
+// Joined pieces never collide with each other: every constraint is added with Bullet's
+// "disable collisions between linked bodies", so two pieces that touch along a fracture face do
+// not push each other apart at rest (the classic frame-one explosion); when the last constraint
+// between them breaks it is removed from the world and they collide again from the next step.
+// Pieces that overlap at the start without being joined (touching along an edge; convex parts
+// reaching into a neighbour) ignore each other until their bounding boxes part.
+// Every body carrying constraints is kept awake: a sleeping island freezes the joint feedback and
+// skips the break check.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/model.h"
+#include "core/scene_settings.h"
+#include "core/trajectory.h"
+#include "simulate/energized_fracture.h"
+
+namespace shatter {
+
+struct WorldSetup {
+    SceneSettings scene;
+    ObjectSettings object;
+    MaterialSettings material;
+    double h = 1.0 / 240;   // solver step (unit: s)
+    uint32_t iterations = 20;
+};
+
+class BulletWorld {
+public:
+    BulletWorld(const Model& model, const WorldSetup& setup);
+    ~BulletWorld();
+    BulletWorld(const BulletWorld&) = delete;
+    BulletWorld& operator=(const BulletWorld&) = delete;
+
+    // One solver step of h; scripted bodies move to their place at the step's end.
+    void step();
+    double time() const { return time_; }
+    double h() const { return setup_.h; }
+
+    // State of every body, for rollback.
+    struct Snapshot;
+    std::shared_ptr<Snapshot> save() const;
+    void restore(const Snapshot& s);
+
+    // Constraints, in model order.
+    size_t constraint_count() const;
+    bool active(size_t c) const;
+    double stiffness(size_t c) const;   // (unit: N/m)
+    double strength(size_t c) const;    // break force (unit: N)
+    Vec3 force_on_a(size_t c) const;    // from the last step's joint feedback (unit: N)
+    double max_cfm(size_t c) const;     // largest row CFM of the last step
+    double current_max_cfm(size_t c, double* min_row_inverse_mass) const;  // the same from the bodies as they are now
+    uint32_t piece_a(size_t c) const;
+    uint32_t piece_b(size_t c) const;
+    // Removes it from the world (its pieces may collide again when no other constraint joins them).
+    void remove_constraint(size_t c);
+    // The two bodies at the constraint's pivot (its mid-point), for energize().
+    std::array<BodyAtPivot, 2> bodies_at_pivot(size_t c, Vec3* pivot) const;
+    // Applies the impulses (N s) of a break at the world point to the constraint's two pieces.
+    void apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks);
+
+    // Energy books over the dynamic pieces (driven pieces and props are scripted, not counted).
+    double kinetic_energy() const;    // (unit: J)
+    double kinetic_energy_of_pair(size_t c) const;  // of the constraint's two pieces (unit: J)
+    double potential_energy() const;  // -sum m g.x (unit: J)
+    double stored_energy() const;     // sum over active constraints of |f|^2 / 2k (unit: J)
+    Vec3 linear_momentum() const;     // (unit: kg m/s)
+    Vec3 angular_momentum() const;    // about the world origin (unit: kg m^2/s)
+    bool finite() const;              // every body's position and velocity finite
+
+    // Poses as the trajectory stores them.
+    BodyPose piece_pose(uint32_t piece) const;
+    BodyPose prop_pose(uint32_t prop) const;
+    Vec3 piece_velocity(uint32_t piece) const;
+    Vec3 piece_position(uint32_t piece) const;  // centre of mass, world (unit: m)
+    uint32_t pieces() const;
+    uint32_t props() const;
+    bool piece_dynamic(uint32_t piece) const;
+
+private:
+    void build_pieces(const Model& model);
+    void build_joints(const Model& model);
+    void ignore_initial_overlaps();
+    void release_parted_pairs();
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    WorldSetup setup_;
+    double time_ = 0;
+};
+
+}  // namespace shatter

@@ -1,0 +1,35 @@
+#include "simulate/compliant_constraint.h"
+
+#include <algorithm>
+
+#include "simulate/bullet_convert.h"
+#include "simulate/spring.h"
+
+namespace shatter {
+
+CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& b, const btVector3& pivot_in_a,
+                                                   const btVector3& pivot_in_b, double stiffness, double damping,
+                                                   double h)
+    : btPoint2PointConstraint(a, b, pivot_in_a, pivot_in_b), k_(stiffness), c_(damping), h_(h) {
+    setParam(BT_CONSTRAINT_ERP, btScalar(spring_erp(k_, c_, h_)), -1);  // only axis -1 is honoured
+    setJointFeedback(&feedback_);
+}
+
+void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
+    btPoint2PointConstraint::getInfo2(info);
+    const btRigidBody& a = getRigidBodyA();
+    const btRigidBody& b = getRigidBodyB();
+    const Vec3 ra = to_eigen(a.getWorldTransform().getBasis() * getPivotInA());
+    const Vec3 rb = to_eigen(b.getWorldTransform().getBasis() * getPivotInB());
+    const Mat3 ia = to_eigen(a.getInvInertiaTensorWorld());
+    const Mat3 ib = to_eigen(b.getInvInertiaTensorWorld());
+    last_max_cfm_ = 0;
+    for (int j = 0; j < 3; ++j) {
+        const double w = row_inverse_mass(a.getInvMass(), ia, ra, b.getInvMass(), ib, rb, Vec3::Unit(j));
+        const double cfm = spring_cfm(k_, c_, h_, w);
+        info->cfm[j * info->rowskip] = btScalar(cfm);
+        last_max_cfm_ = std::max(last_max_cfm_, cfm);
+    }
+}
+
+}  // namespace shatter

@@ -1,0 +1,30 @@
+// A btPoint2PointConstraint that is a spring-damper of stiffness k and damping c in physical
+// units: ERP from k, c and h; each of its three rows gets its own CFM from its own inverse
+// effective mass, recomputed every step as the bodies turn (simulate/spring.h). It also carries
+// the joint feedback that breaking and energizing read.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+namespace shatter {
+
+class CompliantPointConstraint : public btPoint2PointConstraint {
+public:
+    CompliantPointConstraint(btRigidBody& a, btRigidBody& b, const btVector3& pivot_in_a, const btVector3& pivot_in_b,
+                             double stiffness, double damping, double h);
+
+    void getInfo2(btConstraintInfo2* info) override;
+
+    double stiffness() const { return k_; }
+    double damping() const { return c_; }
+    // The largest row CFM of the last step (1 / (w h (h k + c)) over the three rows).
+    double last_max_cfm() const { return last_max_cfm_; }
+    const btJointFeedback& feedback() const { return feedback_; }
+
+private:
+    double k_, c_, h_;
+    double last_max_cfm_ = 0;
+    btJointFeedback feedback_;
+};
+
+}  // namespace shatter

@@ -1,0 +1,93 @@
+// Energized fracture: the contribution of "Energized Rigid Body Fracture" (Xiao Li, Andrew
+// Andrews, Ben Jones, Adam Bargteil; Proc. ACM Comput. Graph. Interact. Tech. 1(1), 2018), free
+// of any physics engine (Eigen only). simulate/bullet_world.cpp is the adapter that feeds it.
+//
+// A breaking constraint stored elastic energy in its compliance; plain deletion throws that
+// energy away. The paper gives it back as kinetic energy:
+//
+//   stored energy      E   = 1/2 |f|^2 / k              (k: the constraint's stiffness, N/m;
+//                                                        f: its force, N; = 1/2 h^-2 l^T C l)
+//   direction, body b  i_b = -(t_b x f_b) / |t_b x f_b| (t_b: the constraint's torque about b's
+//                                                        centre of mass, f_b: its force on b)
+//                      when |t_b x f_b| is tiny (a pull through the centre of mass, a chain):
+//                      a seeded random direction orthogonal to f_b
+//   effective mass     m_G = 1 / (1/m + (r x i)^T I^-1 (r x i))   (r: pivot - centre of mass)
+//   impulse            mu_b = sqrt(2 alpha m_G E_b), applied at the pivot along i_b
+//
+// A body at rest that takes the impulse mu along i at r gains kinetic energy mu^2 / (2 m_G).
+//
+// How E is shared (the paper says "the process is similar for the second body"):
+//   Split::Total (default): the two bodies take impulses of EQUAL magnitude mu with
+//     mu^2/2 (1/m_Ga + 1/m_Gb) = alpha E, so that two bodies at rest gain exactly alpha E in
+//     total, body b the share E_b = alpha E (1/m_Gb) / (1/m_Ga + 1/m_Gb): the lighter body
+//     moves more, as with an internal force pair.
+//   Split::PerBody (the paper read literally): each dynamic body takes alpha E, 2 alpha E in all.
+//   A static or kinematic body takes nothing; a dynamic body joined to one takes the whole
+//   alpha E (both splits).
+// Directions:
+//   Directions::Paper (default): each body its own i_b as above. In a bending break both bodies
+//     can be kicked the same way, so linear momentum is not conserved in general.
+//   Directions::Opposed (momentum-conserving variant): body a takes i_a, body b takes -i_a, with
+//     the equal magnitudes of Split::Total. Equal and opposite impulses at one point change
+//     neither linear nor angular momentum.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/geometry.h"
+
+namespace shatter {
+
+enum class EnergySplit { Total, PerBody };
+enum class KickDirections { Paper, Opposed };
+
+// One body at the breaking constraint's pivot, in world coordinates.
+struct BodyAtPivot {
+    bool dynamic = true;          // false: static or kinematic, takes no impulse
+    double inv_mass = 0;          // (unit: 1/kg)
+    Mat3 inv_inertia = Mat3::Zero();  // world frame (unit: 1/(kg m^2))
+    Vec3 r = Vec3::Zero();        // pivot - centre of mass (unit: m)
+    Vec3 force = Vec3::Zero();    // force the constraint applied to this body (unit: N)
+    Vec3 torque = Vec3::Zero();   // torque the constraint applied about the centre of mass (unit: N m)
+};
+
+struct Kick {
+    Vec3 direction = Vec3::Zero();  // unit vector i_b
+    bool random_direction = false;  // |t x f| was tiny: a random direction orthogonal to f
+    double effective_mass = 0;      // m_G along direction at the pivot (unit: kg)
+    double energy = 0;              // the kinetic energy this body gains if at rest (unit: J)
+    double magnitude = 0;           // mu (unit: N s)
+    Vec3 impulse = Vec3::Zero();    // magnitude * direction (unit: N s), applied at the pivot
+};
+
+struct BreakKicks {
+    double stored_energy = 0;  // E (unit: J)
+    std::array<Kick, 2> kick;  // bodies a and b
+};
+
+struct EnergizeSettings {
+    double alpha = 1.0;  // fraction of E given back; >= 0, > 1 for artistic effect
+    EnergySplit split = EnergySplit::Total;
+    KickDirections directions = KickDirections::Paper;
+    // |t x f| <= tiny_ratio |f|^2 |r| means t and f are (nearly) parallel or t vanishes.
+    double tiny_ratio = 1e-6;
+};
+
+// E = 1/2 |f|^2 / k (unit: J).
+double stored_energy(const Vec3& force, double stiffness);
+
+// m_G = 1 / (1/m + (r x i)^T I^-1 (r x i)) (unit: kg).
+double effective_mass(double inv_mass, const Mat3& inv_inertia, const Vec3& r, const Vec3& direction);
+
+// -(t x f)/|t x f|, or a random unit vector orthogonal to f drawn from `random_key` when
+// |t x f| is tiny. Sets *random accordingly.
+Vec3 kick_direction(const Vec3& force, const Vec3& torque, const Vec3& r, uint64_t random_key, double tiny_ratio,
+                    bool* random);
+
+// The impulses to apply at the pivot when a constraint with stiffness k (N/m) breaks.
+// `random_key` makes the random directions reproducible (e.g. a hash of seed and constraint).
+BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& settings,
+                    uint64_t random_key);
+
+}  // namespace shatter

@@ -1,0 +1,49 @@
+#include "simulate/recording.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace shatter {
+
+namespace {
+
+nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
+    std::string out;
+    for (const BreakRecord& b : breaks) {
+        nlohmann::ordered_json kicks = nlohmann::ordered_json::array();
+        for (const Kick& k : b.kicks.kick)
+            kicks.push_back({{"direction", vec(k.direction)},
+                             {"random_direction", k.random_direction},
+                             {"effective_mass_kg", k.effective_mass},
+                             {"impulse_Ns", k.magnitude},
+                             {"energy_J", k.energy}});
+        nlohmann::ordered_json j = {{"time_s", b.time},
+                                    {"constraint", b.constraint},
+                                    {"pieces", {b.piece_a, b.piece_b}},
+                                    {"pivot_m", vec(b.pivot)},
+                                    {"force_N", vec(b.force)},
+                                    {"force_norm_N", b.force.norm()},
+                                    {"strength_N", b.strength},
+                                    {"stiffness_N_per_m", b.stiffness},
+                                    {"stored_energy_J", b.kicks.stored_energy},
+                                    {"alpha", b.alpha},
+                                    {"kicks", kicks},
+                                    {"injected_energy_J", b.injected_energy}};
+        out += j.dump() + "\n";
+    }
+    return out;
+}
+
+std::string energy_csv(const std::vector<EnergySample>& samples) {
+    std::string out = "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J\n";
+    for (const EnergySample& e : samples)
+        out += fmt::format("{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", e.time, e.kinetic, e.potential, e.stored,
+                           e.injected, e.removed);
+    return out;
+}
+
+}  // namespace shatter

@@ -1,0 +1,158 @@
+#include "simulate/simulate.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/stage_file.h"
+#include "simulate/break_policy.h"
+#include "simulate/breaking.h"
+#include "simulate/bullet_world.h"
+#include "simulate/spring.h"
+
+namespace shatter {
+
+namespace {
+
+EnergizeSettings energize_settings(const SimulationInput& in) {
+    EnergizeSettings e;
+    e.alpha = in.material.alpha;
+    e.split = in.simulate.energy_split == EnergySplitMode::PerBody ? EnergySplit::PerBody : EnergySplit::Total;
+    e.directions = in.simulate.directions == KickDirectionMode::Opposed ? KickDirections::Opposed : KickDirections::Paper;
+    return e;
+}
+
+// Refuses constraints whose spring is too soft for its bodies at this step: the solver diverges
+// as CFM nears 1 (simulate/spring.h).
+void check_cfm(const BulletWorld& world, const Model& model, const SimulationInput& in) {
+    for (size_t c = 0; c < world.constraint_count(); ++c) {
+        if (!world.active(c)) continue;
+        double w = 0;
+        const double cfm = world.current_max_cfm(c, &w);
+        if (cfm <= in.simulate.max_cfm) continue;
+        const double area = model.constraints[c].area;
+        const double k_min = min_stiffness_for_cfm(in.material.damping * area, world.h(), w, in.simulate.max_cfm) / area;
+        throw_input_error(
+            "[material] stiffness",
+            fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with stiffness "
+                        "{:.4g} N/m^3; the solver converges only below CFM {:g} (max_cfm)",
+                        c, world.piece_a(c), world.piece_b(c), cfm, world.h(), in.material.stiffness,
+                        in.simulate.max_cfm),
+            fmt::format("raise [material] stiffness to at least {:.3g} N/m^3 (or damping), or use fewer [simulate] "
+                        "substeps: a longer step lowers CFM",
+                        k_min));
+    }
+}
+
+class Run {
+public:
+    Run(const SimulationInput& in, BulletWorld& world)
+        : in_(in), world_(world), policy_(in.simulate.rate_limit), energize_(energize_settings(in)) {}
+
+    void substep(SimulationResult& out) {
+        std::shared_ptr<BulletWorld::Snapshot> start;
+        if (in_.simulate.rollback) start = world_.save();
+        world_.step();
+        ++out.steps;
+        std::vector<Overload> over;
+        for (size_t c = 0; c < world_.constraint_count(); ++c) {
+            if (!world_.active(c)) continue;
+            const double f = world_.force_on_a(c).norm();
+            if (f > world_.strength(c)) over.push_back({c, world_.strength(c) > 0 ? f / world_.strength(c) : INFINITY});
+        }
+        const std::vector<size_t> broken = policy_.select(over, world_.time());
+        if (broken.empty()) return;
+        // The load at the break defines E and the directions; a rollback re-runs the step without
+        // the broken constraints, and the impulses then act on the re-run state.
+        std::vector<std::array<BodyAtPivot, 2>> loads;
+        for (size_t c : broken) {
+            Vec3 pivot;
+            loads.push_back(world_.bodies_at_pivot(c, &pivot));
+        }
+        if (start) world_.restore(*start);
+        for (size_t c : broken) world_.remove_constraint(c);
+        if (start) world_.step();
+        for (size_t i = 0; i < broken.size(); ++i) energize_break(broken[i], loads[i], out);
+    }
+
+    EnergySample books() const {
+        return {world_.time(), world_.kinetic_energy(), world_.potential_energy(), world_.stored_energy(), injected_,
+                removed_};
+    }
+
+private:
+    void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, SimulationResult& out) {
+        BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c));
+        injected_ += r.injected_energy;
+        removed_ += r.kicks.stored_energy;
+        out.breaks.push_back(r);
+    }
+
+    const SimulationInput& in_;
+    BulletWorld& world_;
+    BreakPolicy policy_;
+    EnergizeSettings energize_;
+    double injected_ = 0, removed_ = 0;
+};
+
+std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model) {
+    nlohmann::ordered_json j;
+    j["model"] = {{"fnv1a64", model_id}, {"pieces", model.pieces.size()}};
+    j["scene"] = to_json(in.scene);
+    j["object"] = to_json(in.object);
+    j["material"] = to_json(in.material);
+    j["simulate"] = to_json(in.simulate);
+    return j.dump();
+}
+
+void record(const BulletWorld& world, Trajectory& t) {
+    for (uint32_t p = 0; p < world.pieces(); ++p) t.poses.push_back(world.piece_pose(p));
+    for (uint32_t p = 0; p < world.props(); ++p) t.poses.push_back(world.prop_pose(p));
+}
+
+}  // namespace
+
+uint32_t frame_count(const SimulateSettings& s) { return uint32_t(std::llround(s.duration * s.fps)) + 1; }
+
+SimulationResult simulate(const Model& model, const SimulationInput& in, const std::string& model_id) {
+    WorldSetup setup{in.scene, in.object, in.material, 1.0 / (in.simulate.fps * in.simulate.substeps),
+                     in.simulate.iterations};
+    BulletWorld world(model, setup);
+    check_cfm(world, model, in);
+
+    SimulationResult out;
+    Trajectory& t = out.trajectory;
+    t.producer = producer_string();
+    t.settings_json = trajectory_settings(in, model_id, model);
+    t.fps = in.simulate.fps;
+    t.pieces = world.pieces();
+    t.props = world.props();
+    Run run(in, world);
+    record(world, t);
+    out.energy.push_back(run.books());
+
+    const uint32_t frames = frame_count(in.simulate);
+    Progress progress("simulate", frames - 1);
+    for (uint32_t f = 1; f < frames && out.complete; ++f) {
+        for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
+            run.substep(out);
+            if (!world.finite()) {
+                out.complete = false;
+                out.stop_reason = fmt::format("a piece's position or velocity became NaN or infinite at t = {:.4f} s",
+                                              world.time());
+                break;
+            }
+        }
+        if (!out.complete) break;
+        record(world, t);
+        out.energy.push_back(run.books());
+        progress.advance();
+    }
+    t.complete = out.complete;
+    return out;
+}
+
+}  // namespace shatter

@@ -1,0 +1,67 @@
+// simulate: pieces become rigid bodies joined by compliant point constraints; overloaded
+// constraints break, and the energy they stored comes back as kinetic energy (energized
+// fracture). The public entry point of the stage.
+//
+//   per frame: per substep (h = 1 / (fps * substeps)):
+//     [save state]  step  ->  find overloaded constraints  ->  break policy picks
+//     -> [rollback: restore, remove them, step again | remove them]  ->  energize each
+//   record the frame's poses and energy books
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+#include "core/scene_settings.h"
+#include "core/trajectory.h"
+#include "simulate/energized_fracture.h"
+
+namespace shatter {
+
+struct SimulationInput {
+    SceneSettings scene;
+    ObjectSettings object;
+    MaterialSettings material;
+    SimulateSettings simulate;
+};
+
+struct BreakRecord {
+    double time = 0;  // (unit: s) end of the step in which it broke
+    uint32_t constraint = 0, piece_a = 0, piece_b = 0;
+    Vec3 pivot = Vec3::Zero();  // (unit: m, world)
+    Vec3 force = Vec3::Zero();  // on piece a (unit: N)
+    double strength = 0;        // (unit: N)
+    double stiffness = 0;       // (unit: N/m)
+    double alpha = 0;
+    BreakKicks kicks;           // stored energy E, directions, effective masses, impulses
+    double injected_energy = 0; // kinetic energy the impulses actually added (unit: J)
+};
+
+// The energy books at one recorded frame (unit: J).
+struct EnergySample {
+    double time = 0;       // (unit: s)
+    double kinetic = 0;    // of the dynamic pieces
+    double potential = 0;  // gravitational, -sum m g.x
+    double stored = 0;     // in the active constraints, |f|^2 / 2k
+    double injected = 0;   // by energizing so far
+    double removed = 0;    // stored energy of the constraints broken so far
+};
+
+struct SimulationResult {
+    Trajectory trajectory;
+    std::vector<BreakRecord> breaks;
+    std::vector<EnergySample> energy;
+    uint64_t steps = 0;
+    bool complete = true;
+    std::string stop_reason;  // why it stopped early (complete == false)
+};
+
+// Runs the simulation. `model_id` (e.g. the model file's hash) goes into the trajectory's
+// settings. Throws Error(BadInput) for settings it refuses (e.g. CFM beyond max_cfm). An
+// instability (NaN) stops the run and returns what was recorded, complete = false.
+SimulationResult simulate(const Model& model, const SimulationInput& input, const std::string& model_id);
+
+// Where the frames go: frame count for duration and fps (frame 0 at t = 0 included).
+uint32_t frame_count(const SimulateSettings& s);
+
+}  // namespace shatter
