@@ -29,6 +29,7 @@ struct SimulateFlags {
     std::optional<uint64_t> seed;
     std::optional<std::string> energy_split, directions;
     bool rollback = false;
+    bool exact_energy = false;
 };
 
 template <typename T>
@@ -55,6 +56,7 @@ SimulationInput input_from(const SimulateFlags& f) {
     override_checked(in.simulate.iterations, f.iterations, "--iterations", kIterationsLimits);
     if (f.seed) in.simulate.seed = *f.seed;
     if (f.rollback) in.simulate.rollback = true;
+    if (f.exact_energy) in.simulate.exact_energy = true;
     if (f.energy_split)
         in.simulate.energy_split = *f.energy_split == "per_body" ? EnergySplitMode::PerBody : EnergySplitMode::Total;
     if (f.directions)
@@ -134,6 +136,9 @@ RunCommand add_simulate_command(CLI::App& root) {
                               fmt::format("{:g}", s.rate_limit)));
     c->add_flag("--rollback", f->rollback,
                 "re-run a step in which constraints broke, without them, before energizing (default: off)");
+    c->add_flag("--exact-energy", f->exact_energy,
+                "solve each break's impulse for the bodies' motion so that the kinetic energy gained is exactly alpha E "
+                "(the paper's formula is exact only for bodies at rest) (default: off)");
     c->add_option("--energy-split", f->energy_split,
                   option_help("total: two bodies at rest gain alpha E in all; per_body: each gains alpha E (the "
                               "paper read literally)", "", to_string(s.energy_split)))

@@ -124,6 +124,7 @@ struct SimulateSettings {
     KickDirectionMode directions = KickDirectionMode::Paper;  // "paper": -(t x f) per body; "opposed": momentum-conserving
     double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
     bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
+    bool exact_energy = false;  // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E
     uint64_t seed = 1;          // seed of the random kick directions
     double max_cfm = 0.5;       // refuse settings whose constraints would need a larger CFM (unit: 1)
 };

@@ -437,6 +437,7 @@ std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) c
         p.r = *pivot - to_eigen(body[s]->getCenterOfMassPosition());
         p.force = to_eigen(force[s]);
         p.torque = to_eigen(torque[s]);
+        p.velocity = to_eigen(body[s]->getVelocityInLocalPoint(to_bullet(p.r)));
     }
     return out;
 }

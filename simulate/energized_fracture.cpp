@@ -27,6 +27,15 @@ Vec3 random_orthogonal(const Vec3& n, uint64_t key) {
     return std::cos(angle) * e1 + std::sin(angle) * e2;
 }
 
+// The mu >= 0 with a mu^2 + b mu = e (a > 0, e >= 0): the impulse that adds kinetic energy e to
+// bodies whose pivot velocities along the kick sum to b, a being (1/2) sum 1/m_G.
+double solve_magnitude(double a, double b, double e) {
+    if (e <= 0) return 0;
+    const double disc = std::sqrt(b * b + 4 * a * e);
+    // Both forms are the same root; pick the one without cancellation.
+    return b >= 0 ? 2 * e / (b + disc) : (disc - b) / (2 * a);
+}
+
 }  // namespace
 
 double stored_energy(const Vec3& force, double stiffness) {
@@ -70,20 +79,22 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     }
     const double released = s.alpha * out.stored_energy;
     const bool both = a.dynamic && b.dynamic;
+    // The kinetic energy body k gains from mu along its kick: mu b_k + mu^2 a_k.
+    auto a_of = [&](int k) { return 0.5 / out.kick[k].effective_mass; };
+    auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity) : 0.0; };
     if (both && (s.split == EnergySplit::Total || s.directions == KickDirections::Opposed)) {
-        // Equal magnitudes: mu^2 / 2 (1/m_Ga + 1/m_Gb) = alpha E.
-        const double inv_sum = 1.0 / out.kick[0].effective_mass + 1.0 / out.kick[1].effective_mass;
-        const double mu = std::sqrt(2.0 * released / inv_sum);
-        for (Kick& kick : out.kick) {
-            kick.magnitude = mu;
-            kick.energy = mu * mu / (2.0 * kick.effective_mass);
+        // Equal magnitudes, alpha E in all: mu^2 (a_a + a_b) + mu (b_a + b_b) = alpha E.
+        const double mu = solve_magnitude(a_of(0) + a_of(1), b_of(0) + b_of(1), released);
+        for (int k = 0; k < 2; ++k) {
+            out.kick[k].magnitude = mu;
+            out.kick[k].energy = mu * b_of(k) + mu * mu * a_of(k);
         }
     } else {
         // Each dynamic body takes alpha E (PerBody; or the only dynamic body takes it all).
         for (int k = 0; k < 2; ++k) {
             if (!body[k]->dynamic) continue;
+            out.kick[k].magnitude = solve_magnitude(a_of(k), b_of(k), released);
             out.kick[k].energy = released;
-            out.kick[k].magnitude = std::sqrt(2.0 * out.kick[k].effective_mass * released);
         }
     }
     for (Kick& kick : out.kick) kick.impulse = kick.magnitude * kick.direction;

@@ -22,6 +22,7 @@ EnergizeSettings energize_settings(const SimulationInput& in) {
     e.alpha = in.material.alpha;
     e.split = in.simulate.energy_split == EnergySplitMode::PerBody ? EnergySplit::PerBody : EnergySplit::Total;
     e.directions = in.simulate.directions == KickDirectionMode::Opposed ? KickDirections::Opposed : KickDirections::Paper;
+    e.exact_energy = in.simulate.exact_energy;
     return e;
 }
 
