@@ -1,5 +1,6 @@
 #include "simulate/simulate.h"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -86,7 +87,9 @@ public:
 
 private:
     void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, SimulationResult& out) {
+        const auto start = std::chrono::steady_clock::now();
         BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c));
+        out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy;
         removed_ += r.kicks.stored_energy;
         out.breaks.push_back(r);

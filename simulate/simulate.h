@@ -52,6 +52,7 @@ struct SimulationResult {
     std::vector<BreakRecord> breaks;
     std::vector<EnergySample> energy;
     uint64_t steps = 0;
+    double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
 };

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "box_models.h"
+#include "scenes/box_model.h"
 #include "core/trajectory.h"
 #include "simulate/breaking.h"
 #include "simulate/bullet_world.h"
@@ -19,7 +19,7 @@ constexpr double kSide = 0.1;  // 1 kg boxes at 1000 kg/m^3
 
 // anchor (fixed) - upper - lower, hanging; the upper-lower joint carries the lower box's weight.
 struct HangingPair {
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     WorldSetup setup;
     HangingPair() {
         const uint32_t anchor = b.box(Vec3(0, 2, 0), Vec3::Constant(kSide));
@@ -44,7 +44,7 @@ void settle(BulletWorld& world, double seconds) {
 TEST(Fracture, BreakingTwoBodiesAtRestAddsAlphaTimesStoredEnergyWithinOnePercent) {
     for (double alpha : {0.5, 1.0, 2.0}) {
         HangingPair s;
-        BulletWorld world(s.b.model, s.setup);
+        BulletWorld world(s.b.model(), s.setup);
         settle(world, 1.0);
         Vec3 pivot;
         const auto load = world.bodies_at_pivot(1, &pivot);
@@ -63,7 +63,7 @@ TEST(Fracture, BreakingTwoBodiesAtRestAddsAlphaTimesStoredEnergyWithinOnePercent
 
 TEST(Fracture, PaperLiteralSplitAddsTwiceAlphaE) {
     HangingPair s;
-    BulletWorld world(s.b.model, s.setup);
+    BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
     Vec3 pivot;
     const auto load = world.bodies_at_pivot(1, &pivot);
@@ -77,7 +77,7 @@ TEST(Fracture, PaperLiteralSplitAddsTwiceAlphaE) {
 
 TEST(Fracture, AlphaZeroIsPlainBreakingExactly) {
     HangingPair s;
-    BulletWorld world(s.b.model, s.setup);
+    BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
     Vec3 pivot;
     const auto load = world.bodies_at_pivot(1, &pivot);
@@ -94,7 +94,7 @@ TEST(Fracture, AlphaZeroIsPlainBreakingExactly) {
 // anchor (fixed) - a - b in a row along x, each joint a top and a bottom constraint: gravity
 // bends the a-b joint, its top constraint in tension.
 struct Cantilever {
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     WorldSetup setup;
     Cantilever() {
         const uint32_t anchor = b.box(Vec3(0, 1, 0), Vec3::Constant(kSide));
@@ -117,7 +117,7 @@ struct Cantilever {
 
 TEST(Fracture, BendingBreakKicksAlongMinusTorqueCrossForceFromBulletsFeedback) {
     Cantilever s;
-    BulletWorld world(s.b.model, s.setup);
+    BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
     Vec3 pivot;
     const auto load = world.bodies_at_pivot(Cantilever::kTopOfSecondJoint, &pivot);
@@ -137,7 +137,7 @@ TEST(Fracture, BendingBreakKicksAlongMinusTorqueCrossForceFromBulletsFeedback) {
 TEST(Fracture, PaperKicksChangeMomentumInABendingBreakTheOpposedVariantDoesNot) {
     for (KickDirections d : {KickDirections::Paper, KickDirections::Opposed}) {
         Cantilever s;
-        BulletWorld world(s.b.model, s.setup);
+        BulletWorld world(s.b.model(), s.setup);
         settle(world, 1.0);
         Vec3 pivot;
         const auto load = world.bodies_at_pivot(Cantilever::kTopOfSecondJoint, &pivot);
@@ -161,7 +161,7 @@ TEST(Fracture, PaperKicksChangeMomentumInABendingBreakTheOpposedVariantDoesNot) 
 
 TEST(Fracture, PureTensionBreakKicksOrthogonalToTheForce) {
     HangingPair s;
-    BulletWorld world(s.b.model, s.setup);
+    BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
     Vec3 pivot;
     const auto load = world.bodies_at_pivot(1, &pivot);
@@ -176,7 +176,7 @@ TEST(Fracture, PureTensionBreakKicksOrthogonalToTheForce) {
 // A 1 kg box swinging down from horizontal on a pivot 0.5 m from its centre, its constraint
 // breaking at twice its weight (about 42 degrees below the horizontal); then it flies free.
 SimulationResult pendulum(uint32_t substeps, bool rollback = false) {
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     const uint32_t anchor = b.box(Vec3(0, 2, 0), Vec3::Constant(kSide));
     const uint32_t bob = b.box(Vec3(0.5, 2, 0), Vec3::Constant(kSide));
     b.join(anchor, bob, Vec3(0, 2, 0), 1e-4);
@@ -190,7 +190,7 @@ SimulationResult pendulum(uint32_t substeps, bool rollback = false) {
     in.simulate.substeps = substeps;
     in.simulate.iterations = 50;
     in.simulate.rollback = rollback;
-    return simulate(b.model, in, "test");
+    return simulate(b.model(), in, "test");
 }
 
 double kinetic_energy_at(const std::vector<EnergySample>& e, double t) {
@@ -222,7 +222,7 @@ TEST(Fracture, RollbackRerunsTheBreakingStepWithoutTheConstraint) {
         HangingPair s;
         s.setup.material.strength = 0.5 * 9.81;
         s.setup.material.damping = 0;
-        BulletWorld world(s.b.model, s.setup);
+        BulletWorld world(s.b.model(), s.setup);
         world.step();
         ASSERT_GT(world.force_on_a(0).norm(), s.setup.material.strength);
         // The simulate loop's own path, one step: see simulate.cpp (Run::substep).
@@ -236,7 +236,7 @@ TEST(Fracture, RollbackRerunsTheBreakingStepWithoutTheConstraint) {
         in.simulate.duration = 1.0 / 240;
         in.simulate.rollback = rollback;
         in.simulate.iterations = 50;
-        const SimulationResult r = simulate(s.b.model, in, "test");
+        const SimulationResult r = simulate(s.b.model(), in, "test");
         ASSERT_EQ(r.breaks.size(), 2u);  // both joints carry more than half a box's weight
         const BodyPose& end = r.trajectory.pose(1, 2);
         const double fall = 2 - 2 * kSide - end.position.y();
@@ -252,7 +252,7 @@ TEST(Fracture, RateLimitSpacesBreaksByAtLeastTheLimit) {
     // Five boxes each hanging from a fixed anchor by a constraint weaker than its weight: all are
     // overloaded from the first step. Without a limit all break at once; with 0.3 s, one per 0.3 s.
     for (double limit : {0.0, 0.3}) {
-        test::ModelBuilder b;
+        BoxModelBuilder b;
         const uint32_t anchor = b.box(Vec3(0, 2, 0), Vec3(1, kSide, kSide));
         for (int i = 0; i < 5; ++i) {
             const uint32_t p = b.box(Vec3(-0.4 + 0.2 * i, 2 - kSide, 0), Vec3::Constant(kSide));
@@ -265,7 +265,7 @@ TEST(Fracture, RateLimitSpacesBreaksByAtLeastTheLimit) {
         in.material.strength = 0.5 * 9.81;
         in.simulate.duration = 1.5;
         in.simulate.rate_limit = limit;
-        const SimulationResult r = simulate(b.model, in, "test");
+        const SimulationResult r = simulate(b.model(), in, "test");
         ASSERT_EQ(r.breaks.size(), 5u);
         if (limit == 0) {
             EXPECT_EQ(r.breaks.front().time, r.breaks.back().time);
@@ -287,7 +287,7 @@ TEST(Fracture, SameInputsGiveIdenticalBytes) {
 TEST(Fracture, JoinedPiecesTouchingAtRestStayAtRest) {
     // Two boxes side by side on the ground, touching along a face and joined at its corners:
     // their collision shapes touch, yet they must not push each other apart.
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     const uint32_t l = b.box(Vec3(-kSide / 2, kSide / 2, 0), Vec3::Constant(kSide));
     const uint32_t r = b.box(Vec3(kSide / 2, kSide / 2, 0), Vec3::Constant(kSide));
     for (double y : {0.0, kSide})
@@ -296,7 +296,7 @@ TEST(Fracture, JoinedPiecesTouchingAtRestStayAtRest) {
     in.material.stiffness = 1e12;
     in.material.strength = 1e9;
     in.simulate.duration = 1.0;
-    const SimulationResult out = simulate(b.model, in, "test");
+    const SimulationResult out = simulate(b.model(), in, "test");
     EXPECT_TRUE(out.breaks.empty());
     EXPECT_LT(out.energy.back().kinetic, 1e-6);
     const uint32_t last = out.trajectory.frames() - 1;

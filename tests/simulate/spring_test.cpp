@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "box_models.h"
+#include "scenes/box_model.h"
 #include "simulate/bullet_world.h"
 #include "simulate/spring.h"
 
@@ -15,7 +15,7 @@ namespace {
 // directly above its centre of mass. At rest the constraint carries m g and is stretched
 // phi = m g / k: the measured stiffness is m g / phi.
 struct Hanging {
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     WorldSetup setup;
     Hanging(double mass, double k, double h) {
         const double side = std::cbrt(mass / 1000.0);
@@ -41,7 +41,7 @@ TEST(Spring, StaticStiffnessOfOneBodyOnAnAnchorIsTheRequestedStiffnessWithinOneP
     for (const Case& c : {Case{0.2, 1e5, 1.0 / 240}, Case{5, 3e6, 1.0 / 240}, Case{100, 1e8, 1.0 / 480},
                           Case{1, 2e7, 1.0 / 960}, Case{20, 1e10, 1.0 / 960}}) {
         Hanging s(c.mass, c.k, c.h);
-        BulletWorld world(s.b.model, s.setup);
+        BulletWorld world(s.b.model(), s.setup);
         const Vec3 start = world.piece_position(1);
         for (int i = 0; i < int(0.5 / c.h); ++i) world.step();
         const double sag = start.y() - world.piece_position(1).y();
@@ -55,7 +55,7 @@ TEST(Spring, StaticStiffnessOfOneBodyOnAnAnchorIsTheRequestedStiffnessWithinOneP
 TEST(Spring, StaticStiffnessBetweenTwoDynamicBodiesIsTheRequestedStiffness) {
     // anchor - upper (2 kg) - lower (3 kg): the lower constraint carries only the lower body's
     // weight, and stretches by m_lower g / k although both its ends move.
-    test::ModelBuilder b;
+    BoxModelBuilder b;
     const double side = std::cbrt(2.0 / 1000), side3 = std::cbrt(3.0 / 1000);
     const uint32_t anchor = b.box(Vec3(0, 2, 0), Vec3::Constant(side));
     const uint32_t upper = b.box(Vec3(0, 2 - side, 0), Vec3::Constant(side));
@@ -69,7 +69,7 @@ TEST(Spring, StaticStiffnessBetweenTwoDynamicBodiesIsTheRequestedStiffness) {
     setup.material.strength = 1e30;
     setup.h = 1.0 / 480;
     setup.iterations = 100;
-    BulletWorld world(b.model, setup);
+    BulletWorld world(b.model(), setup);
     const double gap0 = world.piece_position(1).y() - world.piece_position(2).y();
     for (int i = 0; i < 480; ++i) world.step();
     const double stretch = world.piece_position(1).y() - world.piece_position(2).y() - gap0;
@@ -79,7 +79,7 @@ TEST(Spring, StaticStiffnessBetweenTwoDynamicBodiesIsTheRequestedStiffness) {
 TEST(Spring, StoredEnergyFromDisplacementEqualsEnergyFromForceWithinTwoPercent) {
     for (const Case& c : {Case{1, 1e6, 1.0 / 240}, Case{10, 1e8, 1.0 / 480}}) {
         Hanging s(c.mass, c.k, c.h);
-        BulletWorld world(s.b.model, s.setup);
+        BulletWorld world(s.b.model(), s.setup);
         const Vec3 start = world.piece_position(1);
         for (int i = 0; i < int(0.5 / c.h); ++i) world.step();
         const double phi = (start - world.piece_position(1)).norm();

@@ -1,0 +1,244 @@
+// The shot file's [scene] (with its [[scene.colliders]] and [[scene.kinematic]] arrays),
+// [object], [material] and [simulate] sections (docs/shot.md). Every key is checked against its
+// limits where it is read; each entry of an array of tables is read as its own section, named
+// "scene.colliders[2]" (0-based), so that an unknown key there is an error with file:line.
+#include <filesystem>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/shot_sections.h"
+
+namespace shatter {
+
+namespace {
+
+constexpr Limits kGravityLimits{-1e3, 1e3, "m/s^2"};
+constexpr Limits kPositionLimits{-1e6, 1e6, "m"};
+constexpr Limits kRotationLimits{-360, 360, "degrees"};
+constexpr Limits kVelocityLimits{-1e4, 1e4, "m/s"};
+constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
+constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
+constexpr Limits kRadiusLimits{1e-6, 1e6, "m"};
+constexpr Limits kColourLimits{0, 1, "(linear RGB)"};
+constexpr Limits kKeyTimeLimits{0, 3600, "s"};
+
+// An array of `n` numbers, each within `limits`; `example` is a valid value for the fix.
+bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limits& limits, const char* example) {
+    const toml::node* node = s.node(key);
+    if (!node) return false;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != n)
+        s.fail(node, fmt::format("{} must be an array of {} numbers ({})", s.key_name(key), n, limits.unit),
+               fmt::format("write e.g. {} = {}", key, example));
+    std::vector<double> values(n);
+    for (size_t i = 0; i < n; ++i) {
+        const toml::node& e = *a->get(i);
+        const std::string name = fmt::format("{}[{}]", s.key_name(key), i);
+        auto v = e.value<double>();
+        if (!v) s.fail(&e, name + " is not a number", fmt::format("write e.g. {} = {}", key, example));
+        check_limits(s.where(&e), name, *v, limits, false);
+        values[i] = *v;
+    }
+    std::copy(values.begin(), values.end(), out);
+    return true;
+}
+
+bool vec3(TomlSection& s, const char* key, Vec3& out, const Limits& limits, const char* example) {
+    return numbers(s, key, out.data(), 3, limits, example);
+}
+
+bool colour(TomlSection& s, std::array<float, 3>& out) {
+    Vec3 c;
+    if (!vec3(s, "colour", c, kColourLimits, "[0.8, 0.2, 0.1]")) return false;
+    out = {static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())};
+    return true;
+}
+
+// A string key that must be one of `choices`.
+template <class T>
+void choice(TomlSection& s, const char* key, T& out, const std::vector<std::pair<const char*, T>>& choices) {
+    std::string text;
+    if (!s.text(key, text)) return;
+    std::vector<std::string> names;
+    for (const auto& [name, value] : choices) {
+        if (text == name) {
+            out = value;
+            return;
+        }
+        names.push_back(fmt::format("\"{}\"", name));
+    }
+    s.fail(s.node(key), fmt::format("{} = \"{}\" is not one of {}", s.key_name(key), text, fmt::join(names, ", ")),
+           fmt::format("use {}", fmt::join(names, " or ")));
+}
+
+std::string beside_shot(const std::string& path, const std::string& shot_path) {
+    std::filesystem::path p(path);
+    if (p.is_relative()) return (std::filesystem::path(shot_path).parent_path() / p).lexically_normal().string();
+    return path;
+}
+
+// Refuses a key that the chosen shape does not read, instead of ignoring it.
+void refuse_for_shape(TomlSection& s, bool given, const char* key, ShapeKind kind) {
+    if (!given) return;
+    s.fail(s.node(key), fmt::format("{} does not apply to shape = \"{}\"", s.key_name(key), to_string(kind)),
+           fmt::format("remove {} or choose the shape it belongs to (docs/shot.md)", key));
+}
+
+void read_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_path, bool kinematic) {
+    if (kinematic)
+        choice<ShapeKind>(s, "shape", shape.kind, {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}});
+    else
+        choice<ShapeKind>(s, "shape", shape.kind,
+                          {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}, {"plane", ShapeKind::Plane},
+                           {"mesh", ShapeKind::Mesh}});
+    const bool size = vec3(s, "size", shape.size, kSizeLimits, "[1, 0.1, 1]");
+    const bool radius = s.number("radius", shape.radius, kRadiusLimits);
+    const bool mesh = !kinematic && s.text("mesh", shape.mesh);
+    const bool mesh_scale = !kinematic && s.number("mesh_scale", shape.mesh_scale, kScaleLimits);
+    const ShapeKind k = shape.kind;
+    refuse_for_shape(s, size && k != ShapeKind::Box, "size", k);
+    refuse_for_shape(s, radius && k != ShapeKind::Sphere, "radius", k);
+    refuse_for_shape(s, mesh && k != ShapeKind::Mesh, "mesh", k);
+    refuse_for_shape(s, mesh_scale && k != ShapeKind::Mesh, "mesh_scale", k);
+    if (k == ShapeKind::Mesh) {
+        if (shape.mesh.empty())
+            s.fail(mesh ? s.node("mesh") : s.node("shape"),
+                   fmt::format("{} = \"mesh\" needs a mesh file", s.key_name("shape")),
+                   "add mesh = \"FILE\" (relative to the shot file's folder)");
+        shape.mesh = beside_shot(shape.mesh, shot_path);
+    }
+}
+
+void read_pose(TomlSection& s, Pose& pose) {
+    vec3(s, "position", pose.position, kPositionLimits, "[0, 1, 0]");
+    vec3(s, "rotation", pose.rotation_deg, kRotationLimits, "[0, 45, 0]");
+}
+
+void read_surface(TomlSection& s, SurfaceSettings& surface) {
+    s.number("friction", surface.friction, kFrictionLimits);
+    s.number("restitution", surface.restitution, kRestitutionLimits);
+}
+
+void read_collider(TomlSection& s, ColliderSettings& c, const std::string& shot_path) {
+    s.text("name", c.name);
+    read_shape(s, c.shape, shot_path, false);
+    read_pose(s, c.pose);
+    read_surface(s, c.surface);
+    colour(s, c.colour);
+    s.finish();
+}
+
+// keys = [[t, x, y, z], ...]: times in seconds, strictly increasing.
+void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
+    const toml::node* n = s.node("keys");
+    if (!n) return;
+    const char* fix = "write keys = [[0, 0, 1, 0], [2, 1, 1, 0]] (time in s, then x, y, z in m)";
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) s.fail(n, s.key_name("keys") + " must be a non-empty array of [t, x, y, z]", fix);
+    for (size_t i = 0; i < a->size(); ++i) {
+        const toml::node& e = *a->get(i);
+        const std::string name = fmt::format("{}[{}]", s.key_name("keys"), i);
+        const toml::array* k = e.as_array();
+        if (!k || k->size() != 4) s.fail(&e, name + " must be an array of 4 numbers [t, x, y, z]", fix);
+        KeyFrame f;
+        for (size_t c = 0; c < 4; ++c) {
+            const toml::node& v = *k->get(c);
+            auto d = v.value<double>();
+            if (!d) s.fail(&v, fmt::format("{}[{}] is not a number", name, c), fix);
+            check_limits(s.where(&v), fmt::format("{}[{}]", name, c), *d, c ? kPositionLimits : kKeyTimeLimits, false);
+            (c ? f.position[c - 1] : f.time) = *d;
+        }
+        if (!keys.empty() && !(f.time > keys.back().time))
+            s.fail(&e, fmt::format("{} has time {:g} s, not after the key before it ({:g} s)", name, f.time,
+                                   keys.back().time),
+                   "list the keys in increasing time, each time once");
+        keys.push_back(f);
+    }
+}
+
+void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& shot_path) {
+    s.text("name", k.name);
+    read_shape(s, k.shape, shot_path, true);
+    read_pose(s, k.pose);
+    const bool velocity = vec3(s, "velocity", k.velocity, kVelocityLimits, "[1, 0, 0]");
+    read_keys(s, k.keys);
+    if (!k.keys.empty()) {
+        const char* clash = velocity ? "velocity" : s.node("position") ? "position" : nullptr;
+        if (clash)
+            s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name(clash)),
+                   "keep one: keys for a path, or position and velocity for constant motion");
+        k.pose.position = k.keys.front().position;  // the pose at t = 0 (held before the first key)
+    }
+    read_surface(s, k.surface);
+    colour(s, k.colour);
+    s.finish();
+}
+
+// An array of tables ([[scene.colliders]]), each entry read as its own section.
+template <class T, class Read>
+void read_table_array(TomlSection& s, const char* key, const std::string& shot_path, std::vector<T>& out, Read read) {
+    const toml::node* n = s.node(key);
+    if (!n) return;
+    const toml::array* a = n->as_array();
+    const std::string name = s.key_name(key);
+    if (!a || (!a->empty() && !a->is_array_of_tables()))
+        s.fail(n, fmt::format("{} must be an array of tables, each written [[{}]]", name, name), "see docs/shot.md");
+    out.clear();
+    for (size_t i = 0; i < a->size(); ++i) {
+        TomlSection entry(*a->get(i)->as_table(), shot_path, fmt::format("{}[{}]", name, i));
+        out.emplace_back();
+        read(entry, out.back(), shot_path);
+    }
+}
+
+}  // namespace
+
+void read_scene_section(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
+    vec3(s, "gravity", scene.gravity, kGravityLimits, "[0, -9.81, 0]");
+    s.boolean("ground", scene.ground);
+    s.number("ground_height", scene.ground_height, kPositionLimits);
+    s.number("ground_friction", scene.ground_surface.friction, kFrictionLimits);
+    s.number("ground_restitution", scene.ground_surface.restitution, kRestitutionLimits);
+    read_table_array(s, "colliders", shot_path, scene.colliders, read_collider);
+    read_table_array(s, "kinematic", shot_path, scene.kinematic, read_kinematic);
+    s.finish();
+}
+
+void read_object_section(TomlSection& s, ObjectSettings& object) {
+    read_pose(s, object.pose);
+    vec3(s, "velocity", object.velocity, kVelocityLimits, "[0, -1, 0]");
+    vec3(s, "angular_velocity", object.angular_velocity, kAngularVelocityLimits, "[0, 3.14, 0]");
+    s.finish();
+}
+
+void read_material_section(TomlSection& s, MaterialSettings& material) {
+    double density = 0;
+    if (s.number("density", density, kDensityLimits)) material.density = density;
+    s.number("stiffness", material.stiffness, kStiffnessLimits);
+    s.number("damping", material.damping, kDampingLimits);
+    s.number("strength", material.strength, kStrengthLimits);
+    s.number("alpha", material.alpha, kAlphaLimits);
+    read_surface(s, material.surface);
+    s.finish();
+}
+
+void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
+    s.number("duration", simulate.duration, kDurationLimits);
+    s.number("fps", simulate.fps, kFpsLimits);
+    s.integer("substeps", simulate.substeps, kSubstepsLimits);
+    s.integer("iterations", simulate.iterations, kIterationsLimits);
+    choice<EnergySplitMode>(s, "energy_split", simulate.energy_split,
+                            {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}});
+    choice<KickDirectionMode>(s, "directions", simulate.directions,
+                              {{"paper", KickDirectionMode::Paper}, {"opposed", KickDirectionMode::Opposed}});
+    s.number("rate_limit", simulate.rate_limit, kRateLimitLimits);
+    s.boolean("rollback", simulate.rollback);
+    s.boolean("exact_energy", simulate.exact_energy);
+    s.integer("seed", simulate.seed);
+    s.number("max_cfm", simulate.max_cfm, kMaxCfmLimits);
+    s.finish();
+}
+
+}  // namespace shatter
