@@ -39,6 +39,12 @@ Vec3 interpolate_keys(const std::vector<KeyFrame>& keys, double t) {
 
 }  // namespace
 
+Vec3 drive_offset(const PieceDriveSettings& d, double t) {
+    if (d.fixed) return Vec3::Zero();
+    if (d.keys.empty()) return d.velocity * t;
+    return interpolate_keys(d.keys, t);  // the shot reader demands increasing times
+}
+
 Vec3 kinematic_position(const KinematicSettings& k, double t) {
     if (k.keys.empty()) return k.pose.position + k.velocity * t;
     auto by_time = [](const KeyFrame& a, const KeyFrame& b) { return a.time < b.time; };
@@ -88,6 +94,12 @@ double short_float(float f) {
     return d;
 }
 
+ojson keys_json(const std::vector<KeyFrame>& keys) {
+    ojson out = ojson::array();
+    for (const KeyFrame& f : keys) out.push_back({f.time, f.position.x(), f.position.y(), f.position.z()});
+    return out;
+}
+
 ojson colour_json(const std::array<float, 3>& c) {
     return ojson::array({short_float(c[0]), short_float(c[1]), short_float(c[2])});
 }
@@ -126,9 +138,7 @@ ojson kinematic_json(const KinematicSettings& k) {
     put_shape(j, k.shape);
     put_pose(j, k.pose);
     j["velocity"] = vec_json(k.velocity);
-    ojson keys = ojson::array();
-    for (const KeyFrame& f : k.keys) keys.push_back({f.time, f.position.x(), f.position.y(), f.position.z()});
-    j["keys"] = std::move(keys);
+    j["keys"] = keys_json(k.keys);
     put_surface(j, k.surface);
     j["colour"] = colour_json(k.colour);
     return j;
@@ -155,6 +165,10 @@ ojson to_json(const ObjectSettings& s) {
     put_pose(j, s.pose);
     j["velocity"] = vec_json(s.velocity);
     j["angular_velocity"] = vec_json(s.angular_velocity);
+    ojson driven = ojson::array();
+    for (const PieceDriveSettings& d : s.driven)
+        driven.push_back({{"piece", d.piece}, {"fixed", d.fixed}, {"velocity", vec_json(d.velocity)}, {"keys", keys_json(d.keys)}});
+    j["driven"] = std::move(driven);
     return j;
 }
 

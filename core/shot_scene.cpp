@@ -22,6 +22,7 @@ constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
 constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
 constexpr Limits kRadiusLimits{1e-6, 1e6, "m"};
 constexpr Limits kColourLimits{0, 1, "(linear RGB)"};
+constexpr Limits kPieceIndexLimits{0, 1e9, "(piece index)"};
 constexpr Limits kKeyTimeLimits{0, 3600, "s"};
 
 // An array of `n` numbers, each within `limits`; `example` is a valid value for the fix.
@@ -176,6 +177,20 @@ void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& sho
     s.finish();
 }
 
+// [[object.driven]]: a piece the scene moves (kinematic) or holds (fixed = true).
+void read_drive(TomlSection& s, PieceDriveSettings& d, const std::string&) {
+    s.integer("piece", d.piece, kPieceIndexLimits);
+    s.boolean("fixed", d.fixed);
+    const bool moving = vec3(s, "velocity", d.velocity, kVelocityLimits, "[0.05, 0, 0]");
+    read_keys(s, d.keys);
+    if (!d.keys.empty() && moving)
+        s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name("velocity")),
+               "keep one: keys (offsets from the start at times) or a constant velocity");
+    if (d.fixed && (moving || !d.keys.empty()))
+        s.fail(s.node("fixed"), s.key_name("fixed") + " = true with a motion", "a fixed piece does not move: drop the motion");
+    s.finish();
+}
+
 // An array of tables ([[scene.colliders]]), each entry read as its own section.
 template <class T, class Read>
 void read_table_array(TomlSection& s, const char* key, const std::string& shot_path, std::vector<T>& out, Read read) {
@@ -210,6 +225,7 @@ void read_object_section(TomlSection& s, ObjectSettings& object) {
     read_pose(s, object.pose);
     vec3(s, "velocity", object.velocity, kVelocityLimits, "[0, -1, 0]");
     vec3(s, "angular_velocity", object.angular_velocity, kAngularVelocityLimits, "[0, 3.14, 0]");
+    read_table_array(s, "driven", "", object.driven, read_drive);
     s.finish();
 }
 

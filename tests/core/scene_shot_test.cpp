@@ -438,3 +438,39 @@ TEST(SceneSettings, OtherSectionsWriteEveryFieldWithEnumsAsStrings) {
 
 }  // namespace
 }  // namespace shatter
+
+namespace shatter {
+namespace {
+
+TEST(SceneShot, DrivenPiecesAreReadAndTheirOffsetsFollowVelocityOrKeys) {
+    testing_support::TempDir dir;
+    const Shot shot = load_shot(dir.write("s.toml", R"([object]
+[[object.driven]]
+piece = 0
+fixed = true
+[[object.driven]]
+piece = 7
+velocity = [0.05, 0, 0]
+[[object.driven]]
+piece = 8
+keys = [[0, 0, 0, 0], [2, 0, 1, 0]]
+)"));
+    ASSERT_EQ(shot.object.driven.size(), 3u);
+    EXPECT_TRUE(shot.object.driven[0].fixed);
+    EXPECT_EQ(drive_offset(shot.object.driven[0], 5.0), Vec3::Zero());
+    EXPECT_EQ(shot.object.driven[1].piece, 7u);
+    EXPECT_LT((drive_offset(shot.object.driven[1], 2.0) - Vec3(0.1, 0, 0)).norm(), 1e-15);
+    EXPECT_LT((drive_offset(shot.object.driven[2], 1.0) - Vec3(0, 0.5, 0)).norm(), 1e-15);
+    EXPECT_LT((drive_offset(shot.object.driven[2], 9.0) - Vec3(0, 1, 0)).norm(), 1e-15);
+    EXPECT_EQ(to_json(shot.object)["driven"].size(), 3u);
+}
+
+TEST(SceneShot, DrivenPieceWithTwoMotionsOrAnUnknownKeyIsRefused) {
+    expect_error("[object]\n[[object.driven]]\npiece = 1\nvelocity = [1, 0, 0]\nkeys = [[0, 0, 0, 0]]\n",
+                 {"object.driven[0].keys", "both given"});
+    expect_error("[object]\n[[object.driven]]\npiece = 1\nfixed = true\nvelocity = [1, 0, 0]\n", {"fixed", "does not move"});
+    expect_error("[object]\n[[object.driven]]\npeice = 1\n", {":3", "object.driven[0].peice", "did you mean 'piece'"});
+}
+
+}  // namespace
+}  // namespace shatter
