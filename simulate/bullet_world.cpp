@@ -52,10 +52,22 @@ public:
     }
 };
 
+// btDbvtBroadphase keeps a pair while the proxies' boxes, fattened by a fixed 5 cm
+// (DBVT_BP_MARGIN, made for metre-sized bodies), overlap: with 2 cm pieces every piece pairs
+// with ~100 others and each pair runs GJK (measured 110,000 pairs for a 1,024-piece plate).
+// The exact boxes decide here before the narrow phase.
+void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
+                              const btDispatcherInfo& info) {
+    const btBroadphaseProxy* a = pair.m_pProxy0;
+    const btBroadphaseProxy* b = pair.m_pProxy1;
+    if (!TestAabbAgainstAabb2(a->m_aabbMin, a->m_aabbMax, b->m_aabbMin, b->m_aabbMax)) return;
+    btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+}
+
 struct ContactFound : btCollisionWorld::ContactResultCallback {
     double threshold;
     bool found = false;
-    explicit ContactFound(double t) : threshold(t) {}
+    explicit ContactFound(double t) : threshold(t) { m_closestDistanceThreshold = btScalar(t); }
     btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
                              const btCollisionObjectWrapper*, int, int) override {
         if (p.getDistance() < threshold) found = true;
@@ -157,6 +169,7 @@ struct BulletWorld::Impl {
 
 BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup) : impl_(std::make_unique<Impl>()), setup_(setup) {
     Impl& m = *impl_;
+    m.dispatcher.setNearCallback(exact_aabb_near_callback);
     m.gravity = setup.scene.gravity;
     m.world.setGravity(to_bullet(setup.scene.gravity));
     btContactSolverInfo& info = m.world.getSolverInfo();
@@ -226,13 +239,19 @@ void BulletWorld::ignore_initial_overlaps() {
         }
 }
 
+// A pair is released when its bounding boxes are apart by more than 5% of the smaller box's
+// least extent: neighbours that only touch along an edge jitter by a hair while joined to the
+// rest, and releasing them at the first hair would make them collide at that edge every step.
 void BulletWorld::release_parted_pairs() {
     Impl& m = *impl_;
     for (auto it = m.dispatcher.ignored.begin(); it != m.dispatcher.ignored.end();) {
         btVector3 lo_a, hi_a, lo_b, hi_b;
         m.pieces[size_t(it->first)].body->getAabb(lo_a, hi_a);
         m.pieces[size_t(it->second)].body->getAabb(lo_b, hi_b);
-        it = TestAabbAgainstAabb2(lo_a, hi_a, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
+        const btScalar gap = btScalar(0.05) * std::min((hi_a - lo_a).minAxis() >= 0 ? (hi_a - lo_a)[(hi_a - lo_a).minAxis()] : 0,
+                                                      (hi_b - lo_b)[(hi_b - lo_b).minAxis()]);
+        const btVector3 pad(gap, gap, gap);
+        it = TestAabbAgainstAabb2(lo_a - pad, hi_a + pad, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
     }
 }
 
@@ -275,13 +294,22 @@ void BulletWorld::build_pieces(const Model& model) {
         pb.model_center = piece.mass.center;
         const double mass = piece.mass.mass * scale;
         moments = (moments * scale).cwiseMax(1e-12 * mass * std::pow(std::cbrt(piece.mass.volume), 2));
-        auto* compound = new btCompoundShape();
-        m.shapes.emplace_back(compound);
+        // One convex part collides as itself: convex-convex contact is far cheaper than
+        // compound-compound (measured 17% of a 1,000-piece step).
         const double margin = collision_margin(piece.mass.volume);
-        for (const ConvexPart& part : piece.collision) {
-            btConvexHullShape* child = make_part(part, pb.principal, piece.mass.center, margin);
-            m.shapes.emplace_back(child);
-            compound->addChildShape(btTransform::getIdentity(), child);
+        btCollisionShape* compound = nullptr;
+        if (piece.collision.size() == 1) {
+            compound = make_part(piece.collision[0], pb.principal, piece.mass.center, margin);
+            m.shapes.emplace_back(compound);
+        } else {
+            auto* parts = new btCompoundShape();
+            m.shapes.emplace_back(parts);
+            for (const ConvexPart& part : piece.collision) {
+                btConvexHullShape* child = make_part(part, pb.principal, piece.mass.center, margin);
+                m.shapes.emplace_back(child);
+                parts->addChildShape(btTransform::getIdentity(), child);
+            }
+            compound = parts;
         }
         const Vec3 position = r_obj * piece.mass.center + t_obj;
         const btTransform start = make_transform(r_obj * pb.principal, position);

