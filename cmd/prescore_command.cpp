@@ -28,7 +28,7 @@ struct PrescoreFlags {
     bool solid = false;
     std::optional<double> resolution, density, scale, wrap_alpha, wrap_offset;
     std::optional<std::string> collision_tolerance;
-    std::optional<uint32_t> collision_parts;
+    std::optional<uint32_t> collision_parts, constraints_per_pair;
     std::optional<std::string> repair;
 };
 
@@ -71,6 +71,7 @@ Shot shot_from(const PrescoreFlags& f) {
         check_collision_tolerance("--collision-tolerance", p.collision_tolerance, true);
     }
     override_checked(p.collision_max_parts, f.collision_parts, "--collision-max-parts", kCollisionPartsLimits);
+    override_checked(p.constraints_per_pair, f.constraints_per_pair, "--constraints-per-pair", kConstraintsPerPairLimits);
     if (f.solid) p.hollow.reset();
     if (f.hollow) {
         p.hollow = parse_length_flag("--hollow", *f.hollow);
@@ -166,6 +167,10 @@ RunCommand add_prescore_command(CLI::App& root) {
                               "(0.01) or a length (2mm)", "fraction or m", p.collision_tolerance.str()));
     c->add_option("--collision-max-parts", flags->collision_parts,
                   option_help("most convex collision parts per piece", "count", std::to_string(p.collision_max_parts)));
+    c->add_option("--constraints-per-pair", flags->constraints_per_pair,
+                  option_help("most constraints joining two pieces, spread over their interface by farthest-point "
+                              "sampling with the pair's whole area; 0 = one per shared vertex", "count",
+                              std::to_string(p.constraints_per_pair)));
     return [flags] { return run(*flags); };
 }
 

@@ -87,7 +87,8 @@ nlohmann::ordered_json to_json(const PrescoreSettings& s) {
             {"resolution", s.resolution},
             {"density", s.density},
             {"collision_tolerance", s.collision_tolerance.str()},
-            {"collision_max_parts", s.collision_max_parts}};
+            {"collision_max_parts", s.collision_max_parts},
+            {"constraints_per_pair", s.constraints_per_pair}};
 }
 
 }  // namespace shatter

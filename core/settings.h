@@ -54,6 +54,7 @@ struct PrescoreSettings {
     double density = 2400;                // (unit: kg/m^3) glass ~2500, ceramic ~2400, plaster ~1000
     Length collision_tolerance{0.01, true};  // most mean gap between a collision part's hull and the piece's shape
     uint32_t collision_max_parts = 16;    // most convex parts per piece
+    uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
@@ -63,6 +64,7 @@ inline constexpr Limits kHollowAbsoluteLimits{1e-7, 1e6, "m"};
 inline constexpr Limits kCollisionToleranceRelativeLimits{0.0, 1.0, "of the diagonal"};
 inline constexpr Limits kCollisionToleranceAbsoluteLimits{0.0, 1e6, "m"};
 inline constexpr Limits kCollisionPartsLimits{1, 4096, "parts"};
+inline constexpr Limits kConstraintsPerPairLimits{0, 1e6, "constraints (0: all)"};
 
 // Throws Error(Usage or BadInput) "WHERE: KEY = VALUE is outside [MIN, MAX] UNIT" when value is
 // not finite or out of range. `where` is "file:line" or "--flag".

@@ -73,6 +73,7 @@ void read_prescore(TomlSection& s, PrescoreSettings& p) {
     s.number("density", p.density, kDensityLimits);
     read_length(s, "collision_tolerance", p.collision_tolerance, check_collision_tolerance);
     s.integer("collision_max_parts", p.collision_max_parts, kCollisionPartsLimits);
+    s.integer("constraints_per_pair", p.constraints_per_pair, kConstraintsPerPairLimits);
     s.finish();
 }
 

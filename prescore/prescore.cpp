@@ -13,6 +13,7 @@
 #include "core/progress.h"
 #include "core/stage_file.h"
 #include "prescore/collision_parts.h"
+#include "prescore/constraint_reduction.h"
 #include "prescore/constraints.h"
 #include "prescore/hollow.h"
 #include "prescore/mass_properties.h"
@@ -179,7 +180,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     model.tet_piece = std::move(part.tet_piece);
     model.pieces.resize(settings.pieces);
     timer.lap("partition");
-    model.constraints = place_constraints(model.mesh, topo, model.tet_piece);
+    model.constraints = reduce_constraints(place_constraints(model.mesh, topo, model.tet_piece),
+                                           settings.constraints_per_pair);
     timer.lap("constraints");
     build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
     timer.lap("pieces");
