@@ -14,6 +14,8 @@ using RunCommand = std::function<int()>;
 
 RunCommand add_prescore_command(CLI::App& root);
 RunCommand add_info_command(CLI::App& root);
+RunCommand add_render_command(CLI::App& root);
+RunCommand add_diff_command(CLI::App& root);
 RunCommand add_simulate_command(CLI::App& root);
 
 // "DESCRIPTION (unit: UNIT, default: DEFAULT)" for --help texts.

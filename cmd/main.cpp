@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
     add(add_prescore_command);
     add(add_simulate_command);
     add(add_info_command);
+    add(add_render_command);
+    add(add_diff_command);
 
     try {
         app.parse(argc, argv);

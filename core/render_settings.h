@@ -27,7 +27,7 @@ struct RenderSettings {
     std::optional<Vec3> camera_target;    // (unit: m, world)
     double fov = 35;                      // vertical field of view (unit: degrees)
     bool shadows = true;                  // the key light casts shadows (shadow map)
-    uint32_t shadow_map = 2048;           // shadow map width and height (unit: texels)
+    uint32_t shadow_map = 1024;           // shadow map width and height (unit: texels)
     uint32_t msaa = 4;                    // samples per pixel: 1 (off), 2 or 4
     double key_azimuth = -40;             // key light direction, from the camera's direction about +Y, positive to the right (unit: degrees)
     double key_elevation = 50;            // key light height above the horizon (unit: degrees)

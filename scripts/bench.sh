@@ -6,3 +6,7 @@ cd "$(dirname "$0")/.."
 mkdir -p bench/results
 echo "prescore: phase times for the bunny by resolution (bench/results/prescore.csv)"
 "$BUILD/bench/prescore_bench" | tee bench/results/prescore.csv
+echo "simulate: steps per second and the cost of energizing (bench/results/simulate.csv)"
+"$BUILD/bench/simulate_bench" | tee bench/results/simulate.csv
+echo "render: frames per second of the bunny at 1280x720, shadows, 4x MSAA, PNG (bench/results/render.csv)"
+"$BUILD/bench/render_bench" | tee bench/results/render.csv

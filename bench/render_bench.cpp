@@ -1,0 +1,71 @@
+// render benchmark: frames per second for the bunny (assets/bunny.toml, prescored here, 10
+// pieces) flying apart over a synthetic 60-frame trajectory, at 1280x720 with shadows and 4x
+// MSAA, PNG writing included; and where the time goes (draw = shadow + scene + resolve passes
+// rasterized, readback, PNG encode, file write). Rows for the PNG writer on the main thread
+// ("serial") and overlapped on a second thread ("overlap", what `shatter render` does), and for
+// cheaper settings. Prints CSV; never fails on time. Goal (issue 4): >= 20 frames/s in total.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "core/shot.h"
+#include "prescore/prescore.h"
+#include "render/render.h"
+#include "tests/render/render_test_scene.h"
+
+using namespace shatter;
+
+int main(int argc, char** argv) {
+    spdlog::set_level(spdlog::level::warn);
+    const std::string shot_path = argc > 1 ? argv[1] : std::string(SHATTER_SOURCE_DIR) + "/assets/bunny.toml";
+    const Shot shot = load_shot(shot_path);
+    const Model model = prescore(shot.mesh, shot.prescore, nullptr);
+    SceneSettings scene_settings;  // the ground only
+    const Trajectory trajectory = testing_support::test_trajectory(model, scene_settings, 60);
+    RenderScene scene;
+    scene.model = &model;
+    scene.trajectory = &trajectory;
+    scene.scene = scene_settings;
+    size_t triangles = 0;
+    for (const Piece& p : model.pieces) triangles += p.surface.triangles.size();
+
+    const std::string out = "/tmp/shatter-bench-render";
+    std::printf("scene,width,height,shadows,shadow_map,msaa,png_writer,frames,triangles,seconds,fps,draw_ms,readback_ms,"
+                "encode_ms,write_ms,mb_per_frame\n");
+    struct Row {
+        bool shadows;
+        uint32_t msaa;
+        bool overlap;
+        uint32_t shadow_map;
+    };
+    const bool quick = std::getenv("SHATTER_BENCH_QUICK") != nullptr;  // the first row only
+    for (const Row& row : {Row{true, 4, true, 1024}, Row{true, 4, false, 1024}, Row{true, 4, true, 2048},
+                           Row{false, 4, true, 1024}, Row{true, 1, true, 1024}, Row{false, 1, true, 1024}}) {
+        RenderSettings s;  // 1280x720
+        s.shadow_map = row.shadow_map;
+        s.shadows = row.shadows;
+        s.msaa = row.msaa;
+        RenderOptions options;
+        options.progress = false;
+        options.overlap = row.overlap;
+        std::filesystem::remove_all(out);
+        render_frames(scene, s, {0, 2}, out, options);  // warm up: shader compilation (JIT)
+        std::filesystem::remove_all(out);
+        const RenderReport r = render_frames(scene, s, {0, trajectory.frames()}, out, options);
+        uintmax_t bytes = 0;
+        for (const auto& e : std::filesystem::directory_iterator(out)) bytes += e.file_size();
+        const double n = r.frames;
+        std::printf("bunny,%u,%u,%d,%u,%u,%s,%u,%zu,%.3f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n", s.width, s.height, s.shadows,
+                    s.shadow_map, s.msaa, row.overlap ? "overlap" : "serial", r.frames, triangles, r.seconds, n / r.seconds,
+                    1e3 * r.draw_seconds / n, 1e3 * r.readback_seconds / n, 1e3 * r.encode_seconds / n,
+                    1e3 * r.write_seconds / n, double(bytes) / n / 1e6);
+        std::fflush(stdout);
+        if (quick) break;
+    }
+    if (!std::getenv("SHATTER_BENCH_KEEP")) std::filesystem::remove_all(out);  // keep: to look at the frames
+    return 0;
+}

@@ -1,0 +1,142 @@
+// The shot's [render] section and the render settings' JSON (core/render_settings.h). Strict like
+// the other sections: every key is checked against its range, unknown keys are errors.
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/render_settings.h"
+#include "core/shot_sections.h"
+
+namespace shatter {
+
+namespace {
+
+float srgb_to_linear(double s) {
+    return static_cast<float>(s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4));
+}
+
+double linear_to_srgb(double v) {
+    v = v < 0 ? 0 : (v > 1 ? 1 : v);
+    return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+}
+
+bool read_vec3(TomlSection& s, const char* key, std::optional<Vec3>& out) {
+    const toml::node* n = s.node(key);
+    if (!n) return false;
+    const auto* a = n->as_array();
+    Vec3 v;
+    bool ok = a && a->size() == 3;
+    for (size_t i = 0; ok && i < 3; ++i) {
+        auto x = (*a)[i].value<double>();
+        ok = x && std::isfinite(*x) && std::abs(*x) <= 1e6;
+        if (ok) v[int(i)] = *x;
+    }
+    if (!ok)
+        s.fail(n, fmt::format("{} must be three finite numbers within 1e6 (unit: m)", s.key_name(key)),
+               fmt::format("write e.g. {} = [0.5, 0.4, 1.2]", key));
+    out = v;
+    return true;
+}
+
+void read_colour(TomlSection& s, const char* key, std::array<float, 3>& out) {
+    std::string text;
+    if (!s.text(key, text)) return;
+    auto c = parse_srgb_hex(text);
+    if (!c)
+        s.fail(s.node(key), fmt::format("{} = \"{}\" is not a colour", s.key_name(key), text),
+               fmt::format("write an sRGB colour as {} = \"#rrggbb\", e.g. \"#dbd3c4\"", key));
+    out = *c;
+}
+
+}  // namespace
+
+const char* to_string(ColourMode m) { return m == ColourMode::Pieces ? "pieces" : "material"; }
+
+std::optional<ColourMode> parse_colour_mode(const std::string& text) {
+    if (text == "pieces") return ColourMode::Pieces;
+    if (text == "material") return ColourMode::Material;
+    return std::nullopt;
+}
+
+std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text) {
+    if (text.size() != 7 || text[0] != '#') return std::nullopt;
+    std::array<float, 3> out{};
+    for (int i = 0; i < 3; ++i) {
+        unsigned v = 0;
+        for (int k = 0; k < 2; ++k) {
+            const char ch = text[size_t(1 + 2 * i + k)];
+            int d = ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10
+                                                     : ch >= 'A' && ch <= 'F' ? ch - 'A' + 10 : -1;
+            if (d < 0) return std::nullopt;
+            v = v * 16 + unsigned(d);
+        }
+        out[size_t(i)] = srgb_to_linear(v / 255.0);
+    }
+    return out;
+}
+
+std::string srgb_hex(const std::array<float, 3>& linear) {
+    auto byte = [](float v) { return int(std::lround(linear_to_srgb(v) * 255)); };
+    return fmt::format("#{:02x}{:02x}{:02x}", byte(linear[0]), byte(linear[1]), byte(linear[2]));
+}
+
+void check_msaa(const std::string& where, uint32_t msaa, bool from_flag) {
+    if (msaa == 1 || msaa == 2 || msaa == 4) return;
+    throw Error(from_flag ? ExitCode::Usage : ExitCode::BadInput,
+                fmt::format("{}: msaa = {} is not a sample count render offers (fix: 1 (off), 2 or 4)", where, msaa));
+}
+
+void read_render_section(TomlSection& s, RenderSettings& r) {
+    s.integer("width", r.width, kImageSizeLimits);
+    s.integer("height", r.height, kImageSizeLimits);
+    read_vec3(s, "camera_position", r.camera_position);
+    read_vec3(s, "camera_target", r.camera_target);
+    if (r.camera_target && !r.camera_position)
+        s.fail(s.node("camera_target"), "render.camera_target is set without render.camera_position",
+               "also give camera_position, or remove camera_target to frame the animation automatically");
+    if (r.camera_position && r.camera_target && (*r.camera_position - *r.camera_target).norm() < 1e-6)
+        s.fail(s.node("camera_target"), "render.camera_target equals render.camera_position",
+               "place the camera away from the point it looks at");
+    s.number("fov", r.fov, kFovLimits);
+    s.boolean("shadows", r.shadows);
+    s.integer("shadow_map", r.shadow_map, kShadowMapLimits);
+    if (s.integer("msaa", r.msaa, Limits{1, 4, "samples"})) check_msaa(s.where(s.node("msaa")), r.msaa, false);
+    s.number("key_azimuth", r.key_azimuth, kAzimuthLimits);
+    s.number("key_elevation", r.key_elevation, kElevationLimits);
+    std::string mode;
+    if (s.text("colour_mode", mode)) {
+        auto m = parse_colour_mode(mode);
+        if (!m) s.fail(s.node("colour_mode"), fmt::format("render.colour_mode = \"{}\" is not a colour mode", mode),
+                       "use \"pieces\" (palette by piece id) or \"material\" (material_colour)");
+        r.colour_mode = *m;
+    }
+    read_colour(s, "material_colour", r.material_colour);
+    s.number("fracture_tint", r.fracture_tint, kTintLimits);
+    s.number("cavity_shade", r.cavity_shade, kTintLimits);
+    read_colour(s, "background", r.background);
+    s.finish();
+}
+
+nlohmann::ordered_json to_json(const RenderSettings& s) {
+    nlohmann::ordered_json j;
+    j["width"] = s.width;
+    j["height"] = s.height;
+    if (s.camera_position) j["camera_position"] = {s.camera_position->x(), s.camera_position->y(), s.camera_position->z()};
+    if (s.camera_target) j["camera_target"] = {s.camera_target->x(), s.camera_target->y(), s.camera_target->z()};
+    j["fov"] = s.fov;
+    j["shadows"] = s.shadows;
+    j["shadow_map"] = s.shadow_map;
+    j["msaa"] = s.msaa;
+    j["key_azimuth"] = s.key_azimuth;
+    j["key_elevation"] = s.key_elevation;
+    j["colour_mode"] = to_string(s.colour_mode);
+    j["material_colour"] = srgb_hex(s.material_colour);
+    j["fracture_tint"] = s.fracture_tint;
+    j["cavity_shade"] = s.cavity_shade;
+    j["background"] = srgb_hex(s.background);
+    return j;
+}
+
+}  // namespace shatter

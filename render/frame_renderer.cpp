@@ -1,0 +1,186 @@
+#include "render/frame_renderer.h"
+
+#include <cassert>
+#include <chrono>
+
+#include "render/gl.h"
+#include "render/gl_context.h"
+#include "render/scene_bounds.h"
+#include "render/shaders.h"
+
+namespace shatter {
+
+namespace {
+
+constexpr float kPieceSpecular = 0.25f, kPropSpecular = 0.15f, kColliderSpecular = 0.1f;
+const Colour kGroundColour = {0.40f, 0.39f, 0.37f};
+constexpr double kFadeStart = 2.5, kFadeEnd = 8, kGroundExtent = 10;  // in animation radii
+
+Eigen::Matrix4f pose_matrix(const Mat3& rotation, const Vec3& position) {
+    Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+    m.block<3, 3>(0, 0) = rotation.cast<float>();
+    m.block<3, 1>(0, 3) = position.cast<float>();
+    return m;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& settings)
+    : scene_(scene),
+      settings_(settings),
+      bounds_(animation_bounds(animation_balls(scene))),
+      camera_(make_camera(bounds_, animation_balls(scene), settings)),
+      lights_(make_lights(bounds_, camera_, settings)),
+      target_(settings.width, settings.height, settings.msaa),
+      scene_program_(shaders::kSceneVertex, shaders::kSceneFragment, "scene"),
+      shadow_program_(shaders::kShadowVertex, shaders::kShadowFragment, "shadow") {
+    const Trajectory& t = *scene.trajectory;
+    assert(t.pieces == scene.model->pieces.size() && t.props == scene.scene.kinematic.size());
+    if (settings.shadows) shadow_map_ = std::make_unique<ShadowMap>(settings.shadow_map);
+    for (uint32_t i = 0; i < t.pieces; ++i) {
+        Item item;
+        item.mesh = std::make_unique<GpuMesh>(piece_vertices(scene.model->pieces[i], i, settings));
+        item.body = int(i);
+        item.specular = kPieceSpecular;
+        items_.push_back(std::move(item));
+    }
+    for (uint32_t k = 0; k < t.props; ++k) {
+        const KinematicSettings& body = scene.scene.kinematic[k];
+        Item item;
+        item.mesh = std::make_unique<GpuMesh>(body.shape.kind == ShapeKind::Sphere
+                                                  ? sphere_vertices(body.shape.radius, body.colour)
+                                                  : box_vertices(body.shape.size, body.colour));
+        item.body = int(t.pieces + k);
+        item.specular = kPropSpecular;
+        items_.push_back(std::move(item));
+    }
+    add_static_items();
+    check_gl("scene setup");
+}
+
+void FrameRenderer::add_static_items() {
+    const Vec3 centre = bounds_.center();
+    const double radius = bounds_.sizes().norm() / 2;
+    const SceneSettings& s = scene_.scene;
+    for (size_t i = 0; i < s.colliders.size(); ++i) {
+        const ColliderSettings& c = s.colliders[i];
+        const Mat3 r = rotation_matrix(c.pose.rotation_deg);
+        Item item;
+        item.specular = kColliderSpecular;
+        item.model = pose_matrix(r, c.pose.position);
+        switch (c.shape.kind) {
+            case ShapeKind::Box: item.mesh = std::make_unique<GpuMesh>(box_vertices(c.shape.size, c.colour)); break;
+            case ShapeKind::Sphere: item.mesh = std::make_unique<GpuMesh>(sphere_vertices(c.shape.radius, c.colour)); break;
+            case ShapeKind::Mesh:
+                item.mesh = std::make_unique<GpuMesh>(mesh_vertices(scene_.collider_meshes.at(i), c.colour));
+                // The mesh's own coordinates (in metres, mesh_scale applied) placed by the pose.
+                item.closed = false;
+                break;
+            case ShapeKind::Plane: {
+                // A large square of the plane around the animation's centre, fading out.
+                Vec3 local = r.transpose() * (centre - c.pose.position);
+                local.y() = 0;
+                item.model = pose_matrix(r, c.pose.position + r * local);
+                item.mesh = std::make_unique<GpuMesh>(quad_vertices(kGroundExtent * radius, c.colour));
+                item.closed = false;
+                item.fade = true;
+                break;
+            }
+        }
+        items_.push_back(std::move(item));
+    }
+    if (s.ground) {
+        Item item;
+        item.model = pose_matrix(Mat3::Identity(), Vec3(centre.x(), s.ground_height, centre.z()));
+        item.mesh = std::make_unique<GpuMesh>(quad_vertices(kGroundExtent * radius, kGroundColour));
+        item.fade = true;
+        item.casts = false;  // nothing lies below it
+        items_.push_back(std::move(item));
+    }
+}
+
+Eigen::Matrix4f FrameRenderer::model_matrix(const Item& item, uint32_t frame) const {
+    if (item.body < 0) return item.model;
+    const BodyPose& p = scene_.trajectory->pose(frame, uint32_t(item.body));
+    Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+    m.block<3, 3>(0, 0) = p.rotation.normalized().toRotationMatrix();
+    m.block<3, 1>(0, 3) = p.position;
+    return m;
+}
+
+void FrameRenderer::shadow_pass(uint32_t frame) {
+    shadow_map_->bind_for_drawing();
+    shadow_program_.use();
+    shadow_program_.set("u_shadow_view_projection", lights_.shadow_view_projection);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.5f, 2.0f);
+    glCullFace(GL_FRONT);  // closed bodies store their back faces: no acne on lit faces
+    for (const Item& item : items_) {
+        if (!item.casts) continue;
+        if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
+        shadow_program_.set("u_model", model_matrix(item, frame));
+        item.mesh->draw();
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glCullFace(GL_BACK);
+}
+
+void FrameRenderer::scene_pass(uint32_t frame) {
+    target_.bind_scene();
+    const auto& bg = settings_.background;
+    glClearColor(bg[0], bg[1], bg[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    if (settings_.msaa > 1) glEnable(GL_MULTISAMPLE); else glDisable(GL_MULTISAMPLE);
+    const GlProgram& p = scene_program_;
+    p.use();
+    p.set("u_view_projection", Eigen::Matrix4f(camera_.projection * camera_.view));
+    p.set("u_shadow_view_projection", lights_.shadow_view_projection);
+    p.set("u_normal_offset", 1.5f * lights_.shadow_texel);
+    p.set("u_camera", camera_.position);
+    p.set("u_key_direction", lights_.key_direction);
+    p.set("u_key_colour", lights_.key_colour);
+    p.set("u_fill_direction", lights_.fill_direction);
+    p.set("u_fill_colour", lights_.fill_colour);
+    p.set("u_sky_colour", lights_.sky_colour);
+    p.set("u_bounce_colour", lights_.bounce_colour);
+    p.set("u_shadows", settings_.shadows ? 1 : 0);
+    p.set("u_shadow_map", 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shadow_map_ ? shadow_map_->texture() : 0);
+    p.set("u_shadow_texel_uv", 1.0f / float(settings_.shadow_map));
+    const float radius = float(bounds_.sizes().norm() / 2);
+    p.set("u_fade_centre", Eigen::Vector3f(bounds_.center().cast<float>()));
+    p.set("u_fade_start", float(kFadeStart) * radius);
+    p.set("u_fade_end", float(kFadeEnd) * radius);
+    p.set("u_background", Eigen::Vector3f(bg[0], bg[1], bg[2]));
+    for (const Item& item : items_) {
+        if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
+        p.set("u_model", model_matrix(item, frame));
+        p.set("u_fade", item.fade ? 1 : 0);
+        p.set("u_specular", item.specular);
+        item.mesh->draw();
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void FrameRenderer::render(uint32_t frame, uint16_t* rgba_half) {
+    assert(frame < scene_.trajectory->frames());
+    auto start = std::chrono::steady_clock::now();
+    if (shadow_map_) shadow_pass(frame);
+    scene_pass(frame);
+    glFinish();
+    times_.draw = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    target_.resolve_and_read(rgba_half);
+    times_.readback = seconds_since(start);
+}
+
+}  // namespace shatter

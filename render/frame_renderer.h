@@ -1,0 +1,70 @@
+// Draws one frame of a trajectory into an RGBA8 buffer. Built once per render (the meshes go to
+// GL once; the camera, lights and shadow frustum are fixed from the animation's bounds), then
+// called per frame. Each frame depends only on its own poses: no state carries from one frame
+// to the next, so frame f is the same bytes whichever range rendered it.
+//
+// Per frame: shadow pass (depth from the key light, front faces culled, polygon offset) ->
+// scene pass (linear light, MSAA) -> resolve (sample average by glBlitFramebuffer) ->
+// glReadPixels of linear half floats; render/srgb_encode.h makes them sRGB bytes (on the writer
+// thread). Needs a current GlContext on the calling thread.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "render/camera.h"
+#include "render/gl_program.h"
+#include "render/gpu_mesh.h"
+#include "render/lights.h"
+#include "render/render.h"
+#include "render/render_target.h"
+#include "render/shadow_map.h"
+
+namespace shatter {
+
+struct FrameTimes {
+    double draw = 0;      // submit + rasterize all passes (unit: s)
+    double readback = 0;  // MSAA resolve and glReadPixels (unit: s)
+};
+
+class FrameRenderer {
+public:
+    FrameRenderer(const RenderScene& scene, const RenderSettings& settings);
+
+    // Draws frame `frame` (< trajectory frames) and reads it back: width * height * 4 half
+    // floats, linear RGBA, GL's bottom row first (see render/srgb_encode.h).
+    void render(uint32_t frame, uint16_t* rgba_half);
+    const FrameTimes& last_times() const { return times_; }
+    const Camera& camera() const { return camera_; }
+    const Lights& lights() const { return lights_; }
+
+private:
+    struct Item {
+        std::unique_ptr<GpuMesh> mesh;
+        int body = -1;  // trajectory body (pieces, then props); -1: static
+        Eigen::Matrix4f model = Eigen::Matrix4f::Identity();  // for static items
+        bool closed = true;   // back faces may be culled
+        bool fade = false;    // fades into the background with distance (ground, planes)
+        bool casts = true;    // drawn into the shadow map
+        float specular = 0;
+    };
+    void add_static_items();
+    Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
+    void shadow_pass(uint32_t frame);
+    void scene_pass(uint32_t frame);
+
+    const RenderScene& scene_;
+    RenderSettings settings_;
+    Eigen::AlignedBox3d bounds_;
+    Camera camera_;
+    Lights lights_;
+    std::vector<Item> items_;
+    RenderTarget target_;
+    std::unique_ptr<ShadowMap> shadow_map_;
+    GlProgram scene_program_, shadow_program_;
+    FrameTimes times_;
+};
+
+}  // namespace shatter

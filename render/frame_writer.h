@@ -1,0 +1,61 @@
+// Encodes frames to sRGB and PNG and writes them on a second thread while the next frame renders: PNG encoding costs about
+// as much as drawing at 1280x720, and llvmpipe leaves gaps (setup, readback) that the encoder
+// fills. A bounded queue of `depth` frames: push() blocks when the writer falls behind, so
+// memory stays at depth + 1 frame buffers.
+//
+// Determinism: each frame is encoded from its own pixels into its own file, so the order in
+// which the thread gets to them cannot change any byte. With overlap off, push() writes inline.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace shatter {
+
+class FrameWriter {
+public:
+    FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth = 2);
+    ~FrameWriter();  // waits for the queue to drain (errors are dropped; call finish() to see them)
+
+    // A buffer of width * height * 4 half floats to read a frame into (recycled).
+    std::vector<uint16_t> buffer();
+    // Queues the linear RGBA half floats of a frame (GL's bottom row first) to be encoded to
+    // sRGB and PNG and written to `path`; rethrows an error of an earlier write.
+    void push(std::vector<uint16_t> rgba_half, std::string path);
+    // Waits until every queued frame is written; rethrows the first error.
+    void finish();
+
+    double encode_seconds() const { return encode_seconds_; }
+    double write_seconds() const { return write_seconds_; }
+
+private:
+    struct Job {
+        std::vector<uint16_t> rgba;
+        std::string path;
+    };
+    void run();
+    void write(const Job& job);
+    void rethrow();
+
+    uint32_t width_, height_;
+    bool overlap_;
+    size_t depth_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Job> queue_;
+    std::vector<std::vector<uint16_t>> free_;
+    std::vector<uint8_t> rgb_;  // the writer's sRGB bytes
+    bool stop_ = false;
+    bool busy_ = false;
+    std::exception_ptr error_;
+    double encode_seconds_ = 0, write_seconds_ = 0;
+    std::thread thread_;
+};
+
+}  // namespace shatter

@@ -1,0 +1,109 @@
+#include "render/mesh_builder.h"
+
+#include <cmath>
+
+#include "core/palette.h"
+
+namespace shatter {
+
+namespace {
+
+void add_triangle(std::vector<Vertex>& out, const Vec3& a, const Vec3& b, const Vec3& c, const Colour& colour) {
+    Vec3 n = (b - a).cross(c - a);
+    const double len = n.norm();
+    n = len > 0 ? Vec3(n / len) : Vec3(0, 1, 0);
+    for (const Vec3* p : {&a, &b, &c}) {
+        Vertex v{};
+        for (int i = 0; i < 3; ++i) {
+            v.position[i] = static_cast<float>((*p)[i]);
+            v.normal[i] = static_cast<float>(n[i]);
+            v.colour[i] = colour[size_t(i)];
+        }
+        out.push_back(v);
+    }
+}
+
+}  // namespace
+
+Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s) {
+    Colour c = base;
+    for (float& v : c) {
+        if (kind == FaceKind::Fracture) v += (1.0f - v) * static_cast<float>(s.fracture_tint);
+        if (kind == FaceKind::Cavity) v *= static_cast<float>(s.cavity_shade);
+    }
+    return c;
+}
+
+Colour piece_base_colour(uint32_t id, const RenderSettings& s) {
+    return s.colour_mode == ColourMode::Pieces ? piece_colour(id) : s.material_colour;
+}
+
+std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const RenderSettings& s) {
+    const PieceSurface& surf = piece.surface;
+    const Colour base = piece_base_colour(id, s);
+    const Colour by_kind[3] = {face_colour(base, FaceKind::Outer, s), face_colour(base, FaceKind::Fracture, s),
+                               face_colour(base, FaceKind::Cavity, s)};
+    const Vec3& c = piece.mass.center;
+    std::vector<Vertex> out;
+    out.reserve(surf.triangles.size() * 3);
+    for (size_t t = 0; t < surf.triangles.size(); ++t) {
+        const Tri& tri = surf.triangles[t];
+        add_triangle(out, surf.vertices[tri[0]] - c, surf.vertices[tri[1]] - c, surf.vertices[tri[2]] - c,
+                     by_kind[static_cast<int>(surf.kinds[t]) % 3]);
+    }
+    return out;
+}
+
+std::vector<Vertex> box_vertices(const Vec3& size, const Colour& c) {
+    const Vec3 h = size / 2;
+    auto corner = [&](int i) { return Vec3(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z()); };
+    // Faces as corner indices, counter-clockwise seen from outside.
+    static constexpr int kFaces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                         {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    std::vector<Vertex> out;
+    for (const auto& f : kFaces) {
+        add_triangle(out, corner(f[0]), corner(f[1]), corner(f[2]), c);
+        add_triangle(out, corner(f[0]), corner(f[2]), corner(f[3]), c);
+    }
+    return out;
+}
+
+std::vector<Vertex> sphere_vertices(double radius, const Colour& c) {
+    constexpr int kSlices = 48, kStacks = 24;
+    auto point = [&](int i, int j) {
+        const double theta = M_PI * j / kStacks, phi = 2 * M_PI * i / kSlices;
+        return Vec3(radius * std::sin(theta) * std::cos(phi), radius * std::cos(theta),
+                    -radius * std::sin(theta) * std::sin(phi));
+    };
+    std::vector<Vertex> out;
+    for (int j = 0; j < kStacks; ++j)
+        for (int i = 0; i < kSlices; ++i) {
+            const Vec3 a = point(i, j), b = point(i, j + 1), d = point(i + 1, j), e = point(i + 1, j + 1);
+            if (j > 0) add_triangle(out, a, b, d, c);
+            if (j < kStacks - 1) add_triangle(out, d, b, e, c);
+        }
+    // Flat facets show the tessellation; smooth them by using the radial direction as normal.
+    for (Vertex& v : out) {
+        const double len = std::sqrt(double(v.position[0]) * v.position[0] + double(v.position[1]) * v.position[1] +
+                                     double(v.position[2]) * v.position[2]);
+        for (int i = 0; i < 3; ++i) v.normal[i] = static_cast<float>(v.position[i] / len);
+    }
+    return out;
+}
+
+std::vector<Vertex> quad_vertices(double e, const Colour& c) {
+    std::vector<Vertex> out;
+    add_triangle(out, Vec3(-e, 0, -e), Vec3(-e, 0, e), Vec3(e, 0, e), c);
+    add_triangle(out, Vec3(-e, 0, -e), Vec3(e, 0, e), Vec3(e, 0, -e), c);
+    return out;
+}
+
+std::vector<Vertex> mesh_vertices(const TriangleMesh& mesh, const Colour& c) {
+    std::vector<Vertex> out;
+    out.reserve(mesh.triangles.size() * 3);
+    for (const Tri& t : mesh.triangles)
+        add_triangle(out, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], c);
+    return out;
+}
+
+}  // namespace shatter

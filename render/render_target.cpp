@@ -1,0 +1,77 @@
+#include "render/render_target.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "render/gl.h"
+#include "render/gl_context.h"
+
+namespace shatter {
+
+namespace {
+
+void check_complete(const char* what, uint32_t w, uint32_t h) {
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    check_gl(what);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(ExitCode::Io, fmt::format("OpenGL cannot make a {}x{} {} (status 0x{:04x}; fix: a smaller --size "
+                                              "or --msaa 1)", w, h, what, status));
+}
+
+}  // namespace
+
+RenderTarget::RenderTarget(uint32_t width, uint32_t height, uint32_t samples)
+    : width_(width), height_(height), samples_(samples) {
+    const GLsizei w = GLsizei(width), h = GLsizei(height);
+    glGenFramebuffers(1, &scene_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    glGenRenderbuffers(1, &colour_);
+    glBindRenderbuffer(GL_RENDERBUFFER, colour_);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? GLsizei(samples) : 0, GL_RGBA16F, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
+    glGenRenderbuffers(1, &depth_);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? GLsizei(samples) : 0, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+    check_complete("scene framebuffer", width, height);
+    if (samples > 1) {
+        glGenFramebuffers(1, &resolve_fbo_);
+        glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
+        glGenRenderbuffers(1, &resolve_colour_);
+        glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, w, h);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_colour_);
+        check_complete("resolve framebuffer", width, height);
+    }
+}
+
+RenderTarget::~RenderTarget() {
+    if (resolve_fbo_) glDeleteFramebuffers(1, &resolve_fbo_);
+    if (resolve_colour_) glDeleteRenderbuffers(1, &resolve_colour_);
+    glDeleteFramebuffers(1, &scene_fbo_);
+    glDeleteRenderbuffers(1, &depth_);
+    glDeleteRenderbuffers(1, &colour_);
+}
+
+void RenderTarget::bind_scene() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    glViewport(0, 0, GLsizei(width_), GLsizei(height_));
+}
+
+void RenderTarget::resolve_and_read(uint16_t* rgba_half) const {
+    const GLint w = GLint(width_), h = GLint(height_);
+    if (samples_ > 1) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+        glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+    } else {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
+    }
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, rgba_half);
+    check_gl("reading a frame back");
+}
+
+}  // namespace shatter

@@ -1,0 +1,32 @@
+// The box the whole animation lives in: every piece over every frame (its centre of mass
+// position plus the radius of its surface about that centre), every kinematic body over every
+// frame, and the static colliders of finite size. The automatic camera frames this box and the
+// key light's shadow map covers it; both are fixed for the whole render, which keeps a frame's
+// pixels independent of the range rendered and avoids shadows that swim from frame to frame.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "render/render.h"
+
+namespace shatter {
+
+// Radius of a piece's surface about its centre of mass (unit: m).
+double piece_radius(const Piece& piece);
+// Radius of a shape about its origin (unit: m); 0 for a plane or a mesh.
+double shape_radius(const ShapeSettings& shape);
+
+struct Ball {
+    Vec3 centre;    // (unit: m)
+    double radius;  // (unit: m)
+};
+// A ball around every piece and kinematic body in every frame, and around each finite static
+// collider (boxes, spheres; planes and meshes are scenery and left out).
+std::vector<Ball> animation_balls(const RenderScene& scene);
+// The box around those balls, at least 10 cm on each side.
+Eigen::AlignedBox3d animation_bounds(const std::vector<Ball>& balls);
+inline Eigen::AlignedBox3d animation_bounds(const RenderScene& scene) { return animation_bounds(animation_balls(scene)); }
+
+}  // namespace shatter

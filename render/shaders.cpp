@@ -1,0 +1,97 @@
+#include "render/shaders.h"
+
+namespace shatter::shaders {
+
+const char* const kSceneVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_colour;
+uniform mat4 u_model;
+uniform mat4 u_view_projection;
+uniform mat4 u_shadow_view_projection;
+uniform float u_normal_offset;
+out vec3 v_world;
+out vec3 v_normal;
+out vec3 v_colour;
+out vec3 v_shadow;
+void main() {
+    vec4 world = u_model * vec4(a_position, 1.0);
+    v_world = world.xyz;
+    v_normal = mat3(u_model) * a_normal;
+    v_colour = a_colour;
+    // Normal offset: look the shadow map up a little off the surface, against acne.
+    vec4 s = u_shadow_view_projection * vec4(world.xyz + normalize(v_normal) * u_normal_offset, 1.0);
+    v_shadow = s.xyz / s.w * 0.5 + 0.5;
+    gl_Position = u_view_projection * world;
+}
+)";
+
+const char* const kSceneFragment = R"(#version 450 core
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_colour;
+in vec3 v_shadow;
+uniform vec3 u_camera;
+uniform vec3 u_key_direction;
+uniform vec3 u_key_colour;
+uniform vec3 u_fill_direction;
+uniform vec3 u_fill_colour;
+uniform vec3 u_sky_colour;
+uniform vec3 u_bounce_colour;
+uniform int u_shadows;
+uniform float u_shadow_texel_uv;
+uniform sampler2DShadow u_shadow_map;
+uniform int u_fade;
+uniform vec3 u_fade_centre;
+uniform float u_fade_start;
+uniform float u_fade_end;
+uniform vec3 u_background;
+uniform float u_specular;
+out vec4 o_colour;
+
+float key_visibility() {
+    if (u_shadows == 0) return 1.0;
+    vec3 p = v_shadow;
+    if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0) return 1.0;
+    p.z = min(p.z, 1.0);  // receivers beyond the map's far plane: compare with what lies in front
+    // Four bilinear (2x2) comparisons 1.5 texels apart: a 16-texel percentage-closer filter.
+    float d = 0.75 * u_shadow_texel_uv, sum = 0.0;
+    sum += texture(u_shadow_map, vec3(p.xy + vec2(-d, -d), p.z));
+    sum += texture(u_shadow_map, vec3(p.xy + vec2( d, -d), p.z));
+    sum += texture(u_shadow_map, vec3(p.xy + vec2(-d,  d), p.z));
+    sum += texture(u_shadow_map, vec3(p.xy + vec2( d,  d), p.z));
+    return sum * 0.25;
+}
+
+void main() {
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;  // open meshes (mesh colliders) are lit from both sides
+    float key = max(dot(n, u_key_direction), 0.0);
+    if (key > 0.0) key *= key_visibility();
+    float fill = max(dot(n, u_fill_direction), 0.0);
+    vec3 ambient = mix(u_bounce_colour, u_sky_colour, 0.5 + 0.5 * n.y);
+    vec3 colour = v_colour * (u_key_colour * key + u_fill_colour * fill + ambient);
+    if (u_specular > 0.0) {  // the ground has none: skip the pow()
+        vec3 h = normalize(u_key_direction + normalize(u_camera - v_world));
+        colour += u_key_colour * (u_specular * key * pow(max(dot(n, h), 0.0), 40.0));
+    }
+    if (u_fade != 0) {  // the ground (and planes) melt into the background far away
+        float r = length((v_world - u_fade_centre).xz);
+        colour = mix(colour, u_background, smoothstep(u_fade_start, u_fade_end, r));
+    }
+    o_colour = vec4(colour, 1.0);
+}
+)";
+
+const char* const kShadowVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_model;
+uniform mat4 u_shadow_view_projection;
+void main() { gl_Position = u_shadow_view_projection * (u_model * vec4(a_position, 1.0)); }
+)";
+
+const char* const kShadowFragment = R"(#version 450 core
+void main() {}
+)";
+
+}  // namespace shatter::shaders
