@@ -4,9 +4,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "core/settings.h"
 
 namespace shatter {
 
@@ -17,6 +20,15 @@ RunCommand add_info_command(CLI::App& root);
 RunCommand add_render_command(CLI::App& root);
 RunCommand add_diff_command(CLI::App& root);
 RunCommand add_simulate_command(CLI::App& root);
+
+// Sets `field` from a flag that was given, after checking it against its limits (a Usage error
+// naming the flag otherwise).
+template <typename T>
+void override_checked(T& field, const std::optional<T>& flag, const char* name, const Limits& limits) {
+    if (!flag) return;
+    check_limits(name, name, static_cast<double>(*flag), limits, true);
+    field = *flag;
+}
 
 // "DESCRIPTION (unit: UNIT, default: DEFAULT)" for --help texts.
 std::string option_help(const std::string& description, const std::string& unit, const std::string& def);

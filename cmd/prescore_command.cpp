@@ -32,13 +32,6 @@ struct PrescoreFlags {
     std::optional<std::string> repair;
 };
 
-template <typename T>
-void override_checked(T& field, const std::optional<T>& flag, const char* name, const Limits& limits) {
-    if (!flag) return;
-    check_limits(name, name, static_cast<double>(*flag), limits, true);
-    field = *flag;
-}
-
 Length parse_length_flag(const char* flag, const std::string& text) {
     auto len = Length::parse(text);
     if (!len)

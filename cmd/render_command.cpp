@@ -76,13 +76,6 @@ std::array<float, 3> parse_colour(const char* flag, const std::string& text) {
     return *c;
 }
 
-template <typename T>
-void set_checked(T& field, const std::optional<T>& flag, const char* name, const Limits& limits) {
-    if (!flag) return;
-    check_limits(name, name, double(*flag), limits, true);
-    field = *flag;
-}
-
 RenderSettings settings_from(const RenderFlags& f) {
     RenderSettings s = f.shot.empty() ? RenderSettings{} : load_shot(f.shot).render;
     if (f.size) parse_size(*f.size, s);
@@ -92,12 +85,12 @@ RenderSettings settings_from(const RenderFlags& f) {
                                          "also give --camera-position X,Y,Z");
         s.camera_target = parse_point("--camera-target", *f.camera_target);
     }
-    set_checked(s.fov, f.fov, "--fov", kFovLimits);
-    set_checked(s.key_azimuth, f.key_azimuth, "--key-azimuth", kAzimuthLimits);
-    set_checked(s.key_elevation, f.key_elevation, "--key-elevation", kElevationLimits);
-    set_checked(s.fracture_tint, f.fracture_tint, "--fracture-tint", kTintLimits);
-    set_checked(s.cavity_shade, f.cavity_shade, "--cavity-shade", kTintLimits);
-    set_checked(s.shadow_map, f.shadow_map, "--shadow-map", kShadowMapLimits);
+    override_checked(s.fov, f.fov, "--fov", kFovLimits);
+    override_checked(s.key_azimuth, f.key_azimuth, "--key-azimuth", kAzimuthLimits);
+    override_checked(s.key_elevation, f.key_elevation, "--key-elevation", kElevationLimits);
+    override_checked(s.fracture_tint, f.fracture_tint, "--fracture-tint", kTintLimits);
+    override_checked(s.cavity_shade, f.cavity_shade, "--cavity-shade", kTintLimits);
+    override_checked(s.shadow_map, f.shadow_map, "--shadow-map", kShadowMapLimits);
     if (f.msaa) {
         check_msaa("--msaa", *f.msaa, true);
         s.msaa = *f.msaa;

@@ -32,13 +32,6 @@ struct SimulateFlags {
     bool exact_energy = false;
 };
 
-template <typename T>
-void override_checked(T& field, const std::optional<T>& flag, const char* name, const Limits& limits) {
-    if (!flag) return;
-    check_limits(name, name, static_cast<double>(*flag), limits, true);
-    field = *flag;
-}
-
 SimulationInput input_from(const SimulateFlags& f) {
     SimulationInput in;
     if (!f.shot.empty()) {

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/scene_settings.h"
 #include "core/shot.h"
+#include "support/shot_error.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
@@ -14,16 +15,7 @@ namespace {
 
 using testing_support::TempDir;
 
-std::string load_error(const std::string& path) {
-    try {
-        load_shot(path);
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for " << path;
-    return "";
-}
+std::string load_error(const std::string& path) { return testing_support::shot_load_error(path); }
 
 // The error of a shot made of `text`; expects every one of `parts` in the message.
 void expect_error(const std::string& text, std::initializer_list<const char*> parts) {

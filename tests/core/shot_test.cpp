@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/shot.h"
+#include "support/shot_error.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
@@ -9,16 +10,7 @@ namespace {
 
 using testing_support::TempDir;
 
-std::string load_error(const std::string& path) {
-    try {
-        load_shot(path);
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for " << path;
-    return "";
-}
+std::string load_error(const std::string& path) { return testing_support::shot_load_error(path); }
 
 TEST(ShotFile, ReadsEverySettingAndResolvesTheMeshBesideTheShot) {
     TempDir dir;
