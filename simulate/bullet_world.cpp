@@ -52,17 +52,55 @@ public:
     }
 };
 
-// btDbvtBroadphase keeps a pair while the proxies' boxes, fattened by a fixed 5 cm
-// (DBVT_BP_MARGIN, made for metre-sized bodies), overlap: with 2 cm pieces every piece pairs
-// with ~100 others and each pair runs GJK (measured 110,000 pairs for a 1,024-piece plate).
-// The exact boxes decide here before the narrow phase.
+// The proxies' boxes decide here before the narrow phase (a broadphase may keep a pair whose
+// boxes no longer overlap until it next sweeps).
+// btCollisionWorld pads every proxy's box by gContactBreakingThreshold, a fixed 2 cm made for
+// metre-sized bodies: with 2 cm pieces every piece then overlaps ~24 neighbours and each pair runs
+// the narrow phase. PieceWorld pads by the shape's own contact breaking threshold instead (the
+// distance within which its manifolds keep points), so every pair that can have a contact still
+// overlaps. A pair whose exact boxes part loses its algorithm and manifold, as it would on
+// leaving the broadphase: a manifold not refreshed any more would feed stale contacts (even
+// penetrating ones) to the solver.
 void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
                               const btDispatcherInfo& info) {
     const btBroadphaseProxy* a = pair.m_pProxy0;
     const btBroadphaseProxy* b = pair.m_pProxy1;
-    if (!TestAabbAgainstAabb2(a->m_aabbMin, a->m_aabbMax, b->m_aabbMin, b->m_aabbMax)) return;
+    if (!TestAabbAgainstAabb2(a->m_aabbMin, a->m_aabbMax, b->m_aabbMin, b->m_aabbMax)) {
+        if (pair.m_algorithm) {
+            pair.m_algorithm->~btCollisionAlgorithm();
+            dispatcher.freeCollisionAlgorithm(pair.m_algorithm);
+            pair.m_algorithm = nullptr;
+        }
+        return;
+    }
     btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
 }
+
+class PieceWorld : public btDiscreteDynamicsWorld {
+public:
+    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+    // btCollisionWorld::updateSingleAabb with the shape's own padding.
+    void updateAabbs() override {
+        for (int i = 0; i < m_collisionObjects.size(); i++) {
+            btCollisionObject* o = m_collisionObjects[i];
+            if (!(m_forceUpdateAllAabbs || o->isActive())) continue;
+            const btCollisionShape* shape = o->getCollisionShape();
+            const btScalar t = shape->getContactBreakingThreshold(gContactBreakingThreshold);
+            const btVector3 pad(t, t, t);
+            btVector3 lo, hi;
+            shape->getAabb(o->getWorldTransform(), lo, hi);
+            lo -= pad, hi += pad;
+            if (getDispatchInfo().m_useContinuous && o->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
+                !o->isStaticOrKinematicObject()) {
+                btVector3 lo2, hi2;
+                shape->getAabb(o->getInterpolationWorldTransform(), lo2, hi2);
+                lo.setMin(lo2 - pad);
+                hi.setMax(hi2 + pad);
+            }
+            m_broadphasePairCache->setAabb(o->getBroadphaseHandle(), lo, hi, m_dispatcher1);
+        }
+    }
+};
 
 struct ContactFound : btCollisionWorld::ContactResultCallback {
     double threshold;
@@ -124,9 +162,18 @@ void principal_frame(const Mat3& inertia, Mat3* r, Vec3* moments) {
 struct BulletWorld::Impl {
     btDefaultCollisionConfiguration config;
     PieceDispatcher dispatcher{&config};
-    btDbvtBroadphase broadphase;
+    // Sweep and prune keeps exactly the pairs whose boxes overlap; btDbvtBroadphase keeps every
+    // pair within its fixed 5 cm fattening (~110,000 for a 1,024-piece plate of 2 cm pieces),
+    // which the near callback then walks every step. Boxes beyond the world bounds are clamped
+    // to them (still correct, only less culled); 32-bit quantization over 2 km is ~1e-6 m,
+    // rounded outwards.
+    explicit Impl(uint32_t objects)
+        : broadphase(btVector3(-kWorldHalfSize, -kWorldHalfSize, -kWorldHalfSize),
+                     btVector3(kWorldHalfSize, kWorldHalfSize, kWorldHalfSize), objects + 1) {}
+    static constexpr btScalar kWorldHalfSize = 1000;  // (unit: m)
+    bt32BitAxisSweep3 broadphase;
     btSequentialImpulseConstraintSolver solver;
-    btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+    PieceWorld world{&dispatcher, &broadphase, &solver, &config};
 
     struct PieceBody {
         btRigidBody* body = nullptr;
@@ -167,7 +214,10 @@ struct BulletWorld::Impl {
     }
 };
 
-BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup) : impl_(std::make_unique<Impl>()), setup_(setup) {
+BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
+    : impl_(std::make_unique<Impl>(
+          uint32_t(1 + setup.scene.colliders.size() + setup.scene.kinematic.size() + model.pieces.size()))),
+      setup_(setup) {
     Impl& m = *impl_;
     m.dispatcher.setNearCallback(exact_aabb_near_callback);
     m.gravity = setup.scene.gravity;
