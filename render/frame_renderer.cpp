@@ -14,7 +14,10 @@ namespace {
 
 constexpr float kPieceSpecular = 0.25f, kPropSpecular = 0.15f, kColliderSpecular = 0.1f;
 const Colour kGroundColour = {0.40f, 0.39f, 0.37f};
-constexpr double kFadeStart = 2.5, kFadeEnd = 8, kGroundExtent = 10;  // in animation radii
+// The ground square reaches just past the fade (its inscribed circle is the fade end): beyond,
+// the ground would be the background colour, fragments for nothing. Planes keep 10: on a
+// tilted plane the fade's horizontal distance is shorter than the distance in the plane.
+constexpr double kFadeStart = 2.5, kFadeEnd = 8, kGroundExtent = 8.25, kPlaneExtent = 10;  // in animation radii
 
 Eigen::Matrix4f pose_matrix(const Mat3& rotation, const Vec3& position) {
     Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
@@ -36,7 +39,6 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
       camera_(make_camera(bounds_, animation_balls(scene), settings)),
       lights_(make_lights(bounds_, camera_, settings)),
       target_(settings.width, settings.height, settings.msaa),
-      scene_program_(shaders::kSceneVertex, shaders::kSceneFragment, "scene"),
       shadow_program_(shaders::kShadowVertex, shaders::kShadowFragment, "shadow") {
     const Trajectory& t = *scene.trajectory;
     assert(t.pieces == scene.model->pieces.size() && t.props == scene.scene.kinematic.size());
@@ -59,6 +61,12 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         items_.push_back(std::move(item));
     }
     add_static_items();
+    for (const Item& item : items_) {
+        GlProgram& p = scene_programs_[size_t(variant(item))];
+        if (p.id()) continue;
+        const std::string fragment = shaders::scene_fragment(settings.shadows, item.specular > 0, item.fade);
+        p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
+    }
     check_gl("scene setup");
 }
 
@@ -85,7 +93,7 @@ void FrameRenderer::add_static_items() {
                 Vec3 local = r.transpose() * (centre - c.pose.position);
                 local.y() = 0;
                 item.model = pose_matrix(r, c.pose.position + r * local);
-                item.mesh = std::make_unique<GpuMesh>(quad_vertices(kGroundExtent * radius, c.colour));
+                item.mesh = std::make_unique<GpuMesh>(quad_vertices(kPlaneExtent * radius, c.colour));
                 item.closed = false;
                 item.fade = true;
                 break;
@@ -131,16 +139,8 @@ void FrameRenderer::shadow_pass(uint32_t frame) {
     glCullFace(GL_BACK);
 }
 
-void FrameRenderer::scene_pass(uint32_t frame) {
-    target_.bind_scene();
+void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     const auto& bg = settings_.background;
-    glClearColor(bg[0], bg[1], bg[2], 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    if (settings_.msaa > 1) glEnable(GL_MULTISAMPLE); else glDisable(GL_MULTISAMPLE);
-    const GlProgram& p = scene_program_;
-    p.use();
     p.set("u_view_projection", Eigen::Matrix4f(camera_.projection * camera_.view));
     p.set("u_shadow_view_projection", lights_.shadow_view_projection);
     p.set("u_normal_offset", 1.5f * lights_.shadow_texel);
@@ -151,27 +151,44 @@ void FrameRenderer::scene_pass(uint32_t frame) {
     p.set("u_fill_colour", lights_.fill_colour);
     p.set("u_sky_colour", lights_.sky_colour);
     p.set("u_bounce_colour", lights_.bounce_colour);
-    p.set("u_shadows", settings_.shadows ? 1 : 0);
     p.set("u_shadow_map", 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, shadow_map_ ? shadow_map_->texture() : 0);
     p.set("u_shadow_texel_uv", 1.0f / float(settings_.shadow_map));
     const float radius = float(bounds_.sizes().norm() / 2);
     p.set("u_fade_centre", Eigen::Vector3f(bounds_.center().cast<float>()));
     p.set("u_fade_start", float(kFadeStart) * radius);
     p.set("u_fade_end", float(kFadeEnd) * radius);
     p.set("u_background", Eigen::Vector3f(bg[0], bg[1], bg[2]));
+}
+
+void FrameRenderer::scene_pass(uint32_t frame) {
+    target_.bind_scene();
+    const auto& bg = settings_.background;
+    glEnable(GL_FRAMEBUFFER_SRGB);  // linear light in, sRGB bytes stored (clear colour included)
+    glClearColor(bg[0], bg[1], bg[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    if (settings_.msaa > 1) glEnable(GL_MULTISAMPLE); else glDisable(GL_MULTISAMPLE);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shadow_map_ ? shadow_map_->texture() : 0);
+    for (const GlProgram& p : scene_programs_) {
+        if (!p.id()) continue;
+        p.use();
+        set_scene_uniforms(p);
+    }
+    int current = -1;
     for (const Item& item : items_) {
+        const GlProgram& p = scene_programs_[size_t(variant(item))];
+        if (variant(item) != current) p.use(), current = variant(item);
         if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
         p.set("u_model", model_matrix(item, frame));
-        p.set("u_fade", item.fade ? 1 : 0);
         p.set("u_specular", item.specular);
         item.mesh->draw();
     }
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-void FrameRenderer::render(uint32_t frame, uint16_t* rgba_half) {
+void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {
     assert(frame < scene_.trajectory->frames());
     auto start = std::chrono::steady_clock::now();
     if (shadow_map_) shadow_pass(frame);
@@ -179,7 +196,7 @@ void FrameRenderer::render(uint32_t frame, uint16_t* rgba_half) {
     glFinish();
     times_.draw = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    target_.resolve_and_read(rgba_half);
+    target_.resolve_and_read(rgba);
     times_.readback = seconds_since(start);
 }
 

@@ -1,14 +1,15 @@
-// Draws one frame of a trajectory into an RGBA8 buffer. Built once per render (the meshes go to
+// Draws one frame of a trajectory into an sRGB RGBA8 buffer. Built once per render (the meshes go to
 // GL once; the camera, lights and shadow frustum are fixed from the animation's bounds), then
 // called per frame. Each frame depends only on its own poses: no state carries from one frame
 // to the next, so frame f is the same bytes whichever range rendered it.
 //
 // Per frame: shadow pass (depth from the key light, front faces culled, polygon offset) ->
-// scene pass (linear light, MSAA) -> resolve (sample average by glBlitFramebuffer) ->
-// glReadPixels of linear half floats; render/srgb_encode.h makes them sRGB bytes (on the writer
-// thread). Needs a current GlContext on the calling thread.
+// scene pass (linear light, MSAA, encoded to sRGB8 by GL on write) -> resolve (glBlitFramebuffer:
+// samples decoded, averaged in linear light, encoded) -> glReadPixels of sRGB bytes. Needs a
+// current GlContext on the calling thread.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -33,9 +34,9 @@ class FrameRenderer {
 public:
     FrameRenderer(const RenderScene& scene, const RenderSettings& settings);
 
-    // Draws frame `frame` (< trajectory frames) and reads it back: width * height * 4 half
-    // floats, linear RGBA, GL's bottom row first (see render/srgb_encode.h).
-    void render(uint32_t frame, uint16_t* rgba_half);
+    // Draws frame `frame` (< trajectory frames) and reads it back: width * height * 4 bytes,
+    // sRGB-encoded RGBA, GL's bottom row first (see render/srgb_encode.h).
+    void render(uint32_t frame, uint8_t* rgba);
     const FrameTimes& last_times() const { return times_; }
     const Camera& camera() const { return camera_; }
     const Lights& lights() const { return lights_; }
@@ -54,6 +55,8 @@ private:
     Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
     void shadow_pass(uint32_t frame);
     void scene_pass(uint32_t frame);
+    static int variant(const Item& item) { return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0); }
+    void set_scene_uniforms(const GlProgram& p) const;
 
     const RenderScene& scene_;
     RenderSettings settings_;
@@ -63,7 +66,8 @@ private:
     std::vector<Item> items_;
     RenderTarget target_;
     std::unique_ptr<ShadowMap> shadow_map_;
-    GlProgram scene_program_, shadow_program_;
+    std::array<GlProgram, 4> scene_programs_;  // by variant(): highlight, fade (built for the items present)
+    GlProgram shadow_program_;
     FrameTimes times_;
 };
 

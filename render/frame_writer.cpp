@@ -22,10 +22,10 @@ FrameWriter::~FrameWriter() {
     if (thread_.joinable()) thread_.join();
 }
 
-std::vector<uint16_t> FrameWriter::buffer() {
+std::vector<uint8_t> FrameWriter::buffer() {
     std::lock_guard lock(mutex_);
-    if (free_.empty()) return std::vector<uint16_t>(size_t(width_) * height_ * 4);
-    std::vector<uint16_t> b = std::move(free_.back());
+    if (free_.empty()) return std::vector<uint8_t>(size_t(width_) * height_ * 4);
+    std::vector<uint8_t> b = std::move(free_.back());
     free_.pop_back();
     return b;
 }
@@ -33,7 +33,7 @@ std::vector<uint16_t> FrameWriter::buffer() {
 void FrameWriter::write(const Job& job) {
     const auto t0 = std::chrono::steady_clock::now();
     rgb_.resize(size_t(width_) * height_ * 3);
-    encode_srgb_rows(job.rgba.data(), width_, height_, rgb_.data());
+    rgba_rows_to_rgb(job.rgba.data(), width_, height_, rgb_.data());
     const std::string png = encode_png(rgb_.data(), width_, height_, 3, size_t(width_) * 3);
     const auto t1 = std::chrono::steady_clock::now();
     write_file_atomic(job.path, png);
@@ -50,7 +50,7 @@ void FrameWriter::rethrow() {
     }
 }
 
-void FrameWriter::push(std::vector<uint16_t> rgba, std::string path) {
+void FrameWriter::push(std::vector<uint8_t> rgba, std::string path) {
     if (!overlap_) {
         Job job{std::move(rgba), std::move(path)};
         write(job);

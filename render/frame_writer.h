@@ -1,4 +1,4 @@
-// Encodes frames to sRGB and PNG and writes them on a second thread while the next frame renders: PNG encoding costs about
+// Encodes frames to PNG and writes them on a second thread while the next frame renders: PNG encoding costs about
 // as much as drawing at 1280x720, and llvmpipe leaves gaps (setup, readback) that the encoder
 // fills. A bounded queue of `depth` frames: push() blocks when the writer falls behind, so
 // memory stays at depth + 1 frame buffers.
@@ -23,11 +23,11 @@ public:
     FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth = 2);
     ~FrameWriter();  // waits for the queue to drain (errors are dropped; call finish() to see them)
 
-    // A buffer of width * height * 4 half floats to read a frame into (recycled).
-    std::vector<uint16_t> buffer();
-    // Queues the linear RGBA half floats of a frame (GL's bottom row first) to be encoded to
-    // sRGB and PNG and written to `path`; rethrows an error of an earlier write.
-    void push(std::vector<uint16_t> rgba_half, std::string path);
+    // A buffer of width * height * 4 bytes to read a frame into (recycled).
+    std::vector<uint8_t> buffer();
+    // Queues the sRGB RGBA bytes of a frame (GL's bottom row first) to be encoded to PNG and
+    // written to `path`; rethrows an error of an earlier write.
+    void push(std::vector<uint8_t> rgba, std::string path);
     // Waits until every queued frame is written; rethrows the first error.
     void finish();
 
@@ -36,7 +36,7 @@ public:
 
 private:
     struct Job {
-        std::vector<uint16_t> rgba;
+        std::vector<uint8_t> rgba;
         std::string path;
     };
     void run();
@@ -49,7 +49,7 @@ private:
     std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;
-    std::vector<std::vector<uint16_t>> free_;
+    std::vector<std::vector<uint8_t>> free_;
     std::vector<uint8_t> rgb_;  // the writer's sRGB bytes
     bool stop_ = false;
     bool busy_ = false;

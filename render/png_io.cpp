@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <png.h>
+#include <zlib.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -30,6 +31,7 @@ bool write_rows(png_structp png, png_infop info, png_bytep* rows, uint32_t width
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_set_compression_level(png, 1);
+    png_set_compression_strategy(png, Z_RLE);  // runs after the SUB filter: ~2x faster than level 1 deflate
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_write_info(png, info);
     if (channels == 4) png_set_filler(png, 0, PNG_FILLER_AFTER);  // drop the 4th byte of each pixel

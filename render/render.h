@@ -2,9 +2,9 @@
 // (llvmpipe, CPU only), and compares images (`shatter diff`). docs/render.md has the design.
 //
 //   load model + trajectory ──► RenderScene (scene from the trajectory's settings, checked)
-//        ──► FrameRenderer per frame: shadow pass ─► scene pass (4x MSAA, linear RGBA16F)
-//                                     ─► resolve + sRGB encode + row flip ─► RGBA8 readback
-//        ──► FrameWriter thread: PNG encode (zlib 1, SUB) ─► FRAMES/frame_NNNNN.png (atomic)
+//        ──► FrameRenderer per frame: shadow pass ─► scene pass (4x MSAA, linear light
+//                                     encoded by GL into sRGB8) ─► resolve ─► RGBA8 readback
+//        ──► FrameWriter thread: row flip, PNG encode (zlib 1, SUB, RLE) ─► FRAMES/frame_NNNNN.png
 #pragma once
 
 #include <cstdint>

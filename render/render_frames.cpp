@@ -56,7 +56,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
     std::optional<Progress> progress;
     if (options.progress) progress.emplace("render", range.end - range.first);
     for (uint32_t f = range.first; f < range.end; ++f) {
-        std::vector<uint16_t> rgba = writer.buffer();
+        std::vector<uint8_t> rgba = writer.buffer();
         renderer.render(f, rgba.data());
         report.draw_seconds += renderer.last_times().draw;
         report.readback_seconds += renderer.last_times().readback;

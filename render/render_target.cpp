@@ -27,7 +27,7 @@ RenderTarget::RenderTarget(uint32_t width, uint32_t height, uint32_t samples)
     glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
     glGenRenderbuffers(1, &colour_);
     glBindRenderbuffer(GL_RENDERBUFFER, colour_);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? GLsizei(samples) : 0, GL_RGBA16F, w, h);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? GLsizei(samples) : 0, GL_SRGB8_ALPHA8, w, h);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
     glGenRenderbuffers(1, &depth_);
     glBindRenderbuffer(GL_RENDERBUFFER, depth_);
@@ -39,7 +39,7 @@ RenderTarget::RenderTarget(uint32_t width, uint32_t height, uint32_t samples)
         glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_);
         glGenRenderbuffers(1, &resolve_colour_);
         glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, w, h);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_SRGB8_ALPHA8, w, h);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_colour_);
         check_complete("resolve framebuffer", width, height);
     }
@@ -58,8 +58,9 @@ void RenderTarget::bind_scene() const {
     glViewport(0, 0, GLsizei(width_), GLsizei(height_));
 }
 
-void RenderTarget::resolve_and_read(uint16_t* rgba_half) const {
+void RenderTarget::resolve_and_read(uint8_t* rgba) const {
     const GLint w = GLint(width_), h = GLint(height_);
+    glEnable(GL_FRAMEBUFFER_SRGB);  // the resolve decodes the samples, averages in linear light, encodes
     if (samples_ > 1) {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
@@ -70,7 +71,7 @@ void RenderTarget::resolve_and_read(uint16_t* rgba_half) const {
     }
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, rgba_half);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     check_gl("reading a frame back");
 }
 

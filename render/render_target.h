@@ -1,7 +1,9 @@
-// Where a frame is drawn: a linear-light RGBA16F colour buffer with `samples` samples per pixel
-// and a 24-bit depth buffer; with MSAA, a single-sample RGBA16F buffer the samples are averaged
-// into (glBlitFramebuffer) and read back from. Half floats keep the dark tones of linear light
-// free of banding until the one sRGB quantization on the CPU (render/srgb_encode.h).
+// Where a frame is drawn: an SRGB8_ALPHA8 colour buffer with `samples` samples per pixel and a
+// 24-bit depth buffer; with MSAA, a single-sample SRGB8_ALPHA8 buffer the samples are averaged
+// into (glBlitFramebuffer) and read back from. Shaders write linear light and, with
+// GL_FRAMEBUFFER_SRGB on, GL encodes it to sRGB bytes (fine steps in the darks, no banding);
+// the resolve decodes the samples, averages them in linear light and encodes again. A quarter
+// of the bytes of RGBA16F to clear, resolve and read back, and no conversion on the CPU.
 #pragma once
 
 #include <cstdint>
@@ -16,9 +18,9 @@ public:
     RenderTarget& operator=(const RenderTarget&) = delete;
 
     void bind_scene() const;  // the framebuffer the scene is drawn into
-    // Averages the samples (when multisampled) and reads the linear RGBA16F pixels back:
-    // width * height * 4 half floats, GL's bottom row first.
-    void resolve_and_read(uint16_t* rgba_half) const;
+    // Averages the samples (when multisampled) and reads the sRGB RGBA8 pixels back:
+    // width * height * 4 bytes, GL's bottom row first.
+    void resolve_and_read(uint8_t* rgba) const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     uint32_t samples() const { return samples_; }

@@ -38,10 +38,8 @@ uniform vec3 u_fill_direction;
 uniform vec3 u_fill_colour;
 uniform vec3 u_sky_colour;
 uniform vec3 u_bounce_colour;
-uniform int u_shadows;
 uniform float u_shadow_texel_uv;
 uniform sampler2DShadow u_shadow_map;
-uniform int u_fade;
 uniform vec3 u_fade_centre;
 uniform float u_fade_start;
 uniform float u_fade_end;
@@ -49,8 +47,8 @@ uniform vec3 u_background;
 uniform float u_specular;
 out vec4 o_colour;
 
+#if SHADOWS
 float key_visibility() {
-    if (u_shadows == 0) return 1.0;
     vec3 p = v_shadow;
     if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0) return 1.0;
     p.z = min(p.z, 1.0);  // receivers beyond the map's far plane: compare with what lies in front
@@ -62,26 +60,37 @@ float key_visibility() {
     sum += texture(u_shadow_map, vec3(p.xy + vec2( d,  d), p.z));
     return sum * 0.25;
 }
+#endif
 
 void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;  // open meshes (mesh colliders) are lit from both sides
     float key = max(dot(n, u_key_direction), 0.0);
+#if SHADOWS
     if (key > 0.0) key *= key_visibility();
+#endif
     float fill = max(dot(n, u_fill_direction), 0.0);
     vec3 ambient = mix(u_bounce_colour, u_sky_colour, 0.5 + 0.5 * n.y);
     vec3 colour = v_colour * (u_key_colour * key + u_fill_colour * fill + ambient);
-    if (u_specular > 0.0) {  // the ground has none: skip the pow()
-        vec3 h = normalize(u_key_direction + normalize(u_camera - v_world));
-        colour += u_key_colour * (u_specular * key * pow(max(dot(n, h), 0.0), 40.0));
-    }
-    if (u_fade != 0) {  // the ground (and planes) melt into the background far away
-        float r = length((v_world - u_fade_centre).xz);
-        colour = mix(colour, u_background, smoothstep(u_fade_start, u_fade_end, r));
-    }
+#if SPECULAR  // the ground has none: no pow()
+    vec3 h = normalize(u_key_direction + normalize(u_camera - v_world));
+    colour += u_key_colour * (u_specular * key * pow(max(dot(n, h), 0.0), 40.0));
+#endif
+#if FADE  // the ground (and planes) melt into the background far away
+    float r = length((v_world - u_fade_centre).xz);
+    colour = mix(colour, u_background, smoothstep(u_fade_start, u_fade_end, r));
+#endif
     o_colour = vec4(colour, 1.0);
 }
 )";
+
+std::string scene_fragment(bool shadows, bool specular, bool fade) {
+    std::string s = kSceneFragment;
+    const size_t line = s.find('\n') + 1;  // after #version
+    s.insert(line, std::string("#define SHADOWS ") + (shadows ? "1" : "0") + "\n#define SPECULAR " + (specular ? "1" : "0") +
+                       "\n#define FADE " + (fade ? "1" : "0") + "\n");
+    return s;
+}
 
 const char* const kShadowVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_position;

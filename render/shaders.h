@@ -1,14 +1,20 @@
 // The GLSL 4.50 sources of render's two programs:
-//   scene   - lit, shadowed, flat-shaded triangles in linear light (RGBA16F target);
+//   scene   - lit, shadowed, flat-shaded triangles in linear light (sRGB8 target, GL encodes);
 //   shadow  - depth only, from the key light.
 // There is no resolve or encoding pass: the MSAA samples are averaged by glBlitFramebuffer and
-// sRGB is encoded on the CPU (render/srgb_encode.h).
+// sRGB is encoded by GL on write (GL_FRAMEBUFFER_SRGB).
 #pragma once
+
+#include <string>
 
 namespace shatter::shaders {
 
 extern const char* const kSceneVertex;
 extern const char* const kSceneFragment;
+// The scene fragment shader specialized (#define) for one kind of item: llvmpipe runs both sides
+// of every branch under a mask, so a uniform `if` saves nothing; a variant without the shadow
+// lookups, the highlight or the fade does.
+std::string scene_fragment(bool shadows, bool specular, bool fade);
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
 

@@ -20,10 +20,10 @@ Image render_one(const TestScene& t, const RenderSettings& s, uint32_t frame) {
     GlContext context;
     RenderScene scene = t.scene();
     FrameRenderer r(scene, s);
-    std::vector<uint16_t> rgba(size_t(s.width) * s.height * 4);
+    std::vector<uint8_t> rgba(size_t(s.width) * s.height * 4);
     r.render(frame, rgba.data());
     Image img(s.width, s.height);
-    encode_srgb_rows(rgba.data(), s.width, s.height, img.rgb.data());
+    rgba_rows_to_rgb(rgba.data(), s.width, s.height, img.rgb.data());
     return img;
 }
 
