@@ -41,19 +41,34 @@ void settle(BulletWorld& world, double seconds) {
     for (int i = 0; i < int(seconds / world.h()); ++i) world.step();
 }
 
+// Breaks constraint c of a settled world the way the simulate loop does: its load from the last
+// step, out of the world, then energized. `gained` is the kinetic energy the break added.
+struct Broken {
+    std::array<BodyAtPivot, 2> load;
+    Vec3 pivot;
+    BreakRecord record;
+    double gained = 0;
+};
+Broken break_now(BulletWorld& world, size_t c, const EnergizeSettings& e, uint64_t key) {
+    Broken b;
+    b.load = world.bodies_at_pivot(c, &b.pivot);
+    world.remove_constraint(c);
+    const double before = world.kinetic_energy();
+    b.record = energize_broken(world, c, b.load, e, key);
+    b.gained = world.kinetic_energy() - before;
+    return b;
+}
+
 TEST(Fracture, BreakingTwoBodiesAtRestAddsAlphaTimesStoredEnergyWithinOnePercent) {
     for (double alpha : {0.5, 1.0, 2.0}) {
         HangingPair s;
         BulletWorld world(s.b.model(), s.setup);
         settle(world, 1.0);
-        Vec3 pivot;
-        const auto load = world.bodies_at_pivot(1, &pivot);
-        world.remove_constraint(1);
-        const double before = world.kinetic_energy();
         EnergizeSettings e;
         e.alpha = alpha;
-        const BreakRecord r = energize_broken(world, 1, load, e, break_key(1, 1));
-        const double gained = world.kinetic_energy() - before;
+        const Broken b = break_now(world, 1, e, break_key(1, 1));
+        const BreakRecord& r = b.record;
+        const double gained = b.gained;
         ASSERT_GT(r.kicks.stored_energy, 0);
         EXPECT_NEAR(r.kicks.stored_energy, 0.5 * std::pow(9.81, 2) / 1e6, 1e-3 * r.kicks.stored_energy);
         EXPECT_NEAR(gained / (alpha * r.kicks.stored_energy), 1.0, 0.01) << "alpha " << alpha;
@@ -65,14 +80,10 @@ TEST(Fracture, PaperLiteralSplitAddsTwiceAlphaE) {
     HangingPair s;
     BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
-    Vec3 pivot;
-    const auto load = world.bodies_at_pivot(1, &pivot);
-    world.remove_constraint(1);
-    const double before = world.kinetic_energy();
     EnergizeSettings e;
     e.split = EnergySplit::PerBody;
-    const BreakRecord r = energize_broken(world, 1, load, e, break_key(1, 1));
-    EXPECT_NEAR((world.kinetic_energy() - before) / (2 * r.kicks.stored_energy), 1.0, 0.01);
+    const Broken b = break_now(world, 1, e, break_key(1, 1));
+    EXPECT_NEAR(b.gained / (2 * b.record.kicks.stored_energy), 1.0, 0.01);
 }
 
 TEST(Fracture, AlphaZeroIsPlainBreakingExactly) {
@@ -119,14 +130,13 @@ TEST(Fracture, BendingBreakKicksAlongMinusTorqueCrossForceFromBulletsFeedback) {
     Cantilever s;
     BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
-    Vec3 pivot;
-    const auto load = world.bodies_at_pivot(Cantilever::kTopOfSecondJoint, &pivot);
+    const Broken broken = break_now(world, Cantilever::kTopOfSecondJoint, {}, 7);
+    const auto& load = broken.load;
+    const BreakRecord& r = broken.record;
     // Bullet's feedback torque is the constraint force's moment about the centre of mass.
     for (const BodyAtPivot& body : load)
         EXPECT_LT((body.torque - body.r.cross(body.force)).norm(), 1e-6 * (body.r.norm() * body.force.norm()));
     EXPECT_GT(load[0].force.x(), 0);  // the top fibre is in tension: b pulls a towards +x
-    world.remove_constraint(Cantilever::kTopOfSecondJoint);
-    const BreakRecord r = energize_broken(world, Cantilever::kTopOfSecondJoint, load, {}, 7);
     for (int k = 0; k < 2; ++k) {
         EXPECT_FALSE(r.kicks.kick[k].random_direction);
         const Vec3 expected = -(load[k].torque.cross(load[k].force)).normalized();
@@ -163,13 +173,10 @@ TEST(Fracture, PureTensionBreakKicksOrthogonalToTheForce) {
     HangingPair s;
     BulletWorld world(s.b.model(), s.setup);
     settle(world, 1.0);
-    Vec3 pivot;
-    const auto load = world.bodies_at_pivot(1, &pivot);
-    world.remove_constraint(1);
-    const BreakRecord r = energize_broken(world, 1, load, {}, 3);
-    for (const Kick& k : r.kicks.kick) {
+    const Broken b = break_now(world, 1, {}, 3);
+    for (const Kick& k : b.record.kicks.kick) {
         EXPECT_TRUE(k.random_direction);
-        EXPECT_LT(std::abs(k.direction.dot(load[0].force.normalized())), 1e-9);
+        EXPECT_LT(std::abs(k.direction.dot(b.load[0].force.normalized())), 1e-9);
     }
 }
 
