@@ -64,7 +64,7 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     for (const Item& item : items_) {
         GlProgram& p = scene_programs_[size_t(variant(item))];
         if (p.id()) continue;
-        const std::string fragment = shaders::scene_fragment(settings.shadows, item.specular > 0, item.fade);
+        const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade);
         p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
     }
     check_gl("scene setup");
@@ -101,12 +101,46 @@ void FrameRenderer::add_static_items() {
         }
         items_.push_back(std::move(item));
     }
-    if (s.ground) {
+    if (s.ground) add_ground(Vec3(centre.x(), s.ground_height, centre.z()), kGroundExtent * radius);
+}
+
+// The ground, split where the shadow map ends. Only inside the map's footprint on the ground can
+// a lookup find a shadow (outside, key_visibility() returns 1): the rest is drawn without
+// lookups, the same pixels for less work, since llvmpipe runs both sides of a branch. The
+// footprint: the four edges of the light's orthographic box met with the ground plane, padded
+// by 4 texels for the lookups' normal offset and filter taps.
+void FrameRenderer::add_ground(const Vec3& origin, double extent) {
+    double x0 = -extent, x1 = extent, z0 = -extent, z1 = extent;
+    if (shadow_map_) {
+        const Eigen::Matrix4f inverse = lights_.shadow_view_projection.inverse();
+        auto unproject = [&](float x, float y, float z) {
+            const Eigen::Vector4f p = inverse * Eigen::Vector4f(x, y, z, 1);
+            return Vec3(p.head<3>().cast<double>() / double(p.w()));
+        };
+        x0 = z0 = extent, x1 = z1 = -extent;
+        for (float sx : {-1.0f, 1.0f})
+            for (float sy : {-1.0f, 1.0f}) {
+                const Vec3 a = unproject(sx, sy, -1), b = unproject(sx, sy, 1);
+                const Vec3 p = a + (b - a) * ((origin.y() - a.y()) / (b.y() - a.y())) - origin;
+                x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x()), z0 = std::min(z0, p.z()), z1 = std::max(z1, p.z());
+            }
+        const double pad = 4 * lights_.shadow_texel;
+        x0 = std::max(x0 - pad, -extent), x1 = std::min(x1 + pad, extent);
+        z0 = std::max(z0 - pad, -extent), z1 = std::min(z1 + pad, extent);
+    }
+    std::vector<Vertex> inner, ring;
+    const double xs[4] = {-extent, x0, x1, extent}, zs[4] = {-extent, z0, z1, extent};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            add_rect(i == 1 && j == 1 ? inner : ring, xs[i], zs[j], xs[i + 1], zs[j + 1], kGroundColour);
+    for (auto* part : {&inner, &ring}) {
+        if (part->empty()) continue;
         Item item;
-        item.model = pose_matrix(Mat3::Identity(), Vec3(centre.x(), s.ground_height, centre.z()));
-        item.mesh = std::make_unique<GpuMesh>(quad_vertices(kGroundExtent * radius, kGroundColour));
+        item.model = pose_matrix(Mat3::Identity(), origin);
+        item.mesh = std::make_unique<GpuMesh>(std::move(*part));
         item.fade = true;
-        item.casts = false;  // nothing lies below it
+        item.casts = false;              // nothing lies below it
+        item.receives = part == &inner;  // the ring is outside the shadow map
         items_.push_back(std::move(item));
     }
 }

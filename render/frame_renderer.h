@@ -49,13 +49,17 @@ private:
         bool closed = true;   // back faces may be culled
         bool fade = false;    // fades into the background with distance (ground, planes)
         bool casts = true;    // drawn into the shadow map
+        bool receives = true; // looks the shadow map up (false where no shadow can fall)
         float specular = 0;
     };
     void add_static_items();
     Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
     void shadow_pass(uint32_t frame);
     void scene_pass(uint32_t frame);
-    static int variant(const Item& item) { return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0); }
+    static int variant(const Item& item) {
+        return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4);
+    }
+    void add_ground(const Vec3& origin, double extent);
     void set_scene_uniforms(const GlProgram& p) const;
 
     const RenderScene& scene_;
@@ -66,7 +70,7 @@ private:
     std::vector<Item> items_;
     RenderTarget target_;
     std::unique_ptr<ShadowMap> shadow_map_;
-    std::array<GlProgram, 4> scene_programs_;  // by variant(): highlight, fade (built for the items present)
+    std::array<GlProgram, 8> scene_programs_;  // by variant(): highlight, fade, no shadow lookups (built for the items present)
     GlProgram shadow_program_;
     FrameTimes times_;
 };

@@ -91,6 +91,12 @@ std::vector<Vertex> sphere_vertices(double radius, const Colour& c) {
     return out;
 }
 
+void add_rect(std::vector<Vertex>& out, double x0, double z0, double x1, double z1, const Colour& c) {
+    if (!(x1 > x0) || !(z1 > z0)) return;
+    add_triangle(out, Vec3(x0, 0, z0), Vec3(x0, 0, z1), Vec3(x1, 0, z1), c);
+    add_triangle(out, Vec3(x0, 0, z0), Vec3(x1, 0, z1), Vec3(x1, 0, z0), c);
+}
+
 std::vector<Vertex> quad_vertices(double e, const Colour& c) {
     std::vector<Vertex> out;
     add_triangle(out, Vec3(-e, 0, -e), Vec3(-e, 0, e), Vec3(e, 0, e), c);

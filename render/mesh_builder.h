@@ -34,6 +34,8 @@ std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const Render
 std::vector<Vertex> box_vertices(const Vec3& size, const Colour& c);       // full extents, centred
 std::vector<Vertex> sphere_vertices(double radius, const Colour& c);        // 48 x 24 segments
 std::vector<Vertex> quad_vertices(double half_extent, const Colour& c);     // y = 0, facing +y
+// Rectangles [x0, x1] x [z0, z1] of the plane y = 0, facing +y (empty ones are skipped).
+void add_rect(std::vector<Vertex>& out, double x0, double z0, double x1, double z1, const Colour& c);
 std::vector<Vertex> mesh_vertices(const TriangleMesh& mesh, const Colour& c);
 
 }  // namespace shatter
