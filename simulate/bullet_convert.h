@@ -20,4 +20,6 @@ inline btMatrix3x3 to_bullet_matrix(const Mat3& m) {
                        btScalar(m(1, 2)), btScalar(m(2, 0)), btScalar(m(2, 1)), btScalar(m(2, 2)));
 }
 
+inline btTransform make_transform(const Mat3& r, const Vec3& p) { return btTransform(to_bullet_matrix(r), to_bullet(p)); }
+
 }  // namespace shatter

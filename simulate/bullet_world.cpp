@@ -11,7 +11,9 @@
 
 #include "core/error.h"
 #include "prescore/mesh_load.h"
+#include "simulate/bullet_collision.h"
 #include "simulate/bullet_convert.h"
+#include "simulate/bullet_shapes.h"
 #include "simulate/compliant_constraint.h"
 #include "simulate/spring.h"
 
@@ -35,127 +37,6 @@ private:
     btTransform start_;
     std::function<Vec3(double)> offset_;
 };
-
-// Skips the narrow phase for pairs of pieces that overlapped where they started without being
-// joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
-// contact would push them apart, load their constraints and break them in free fall. A pair is
-// released once its bounding boxes part.
-class PieceDispatcher : public btCollisionDispatcher {
-public:
-    using btCollisionDispatcher::btCollisionDispatcher;
-    std::set<std::pair<int, int>> ignored;
-    bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
-        if (!ignored.empty() && a->getUserIndex() >= 0 && b->getUserIndex() >= 0 &&
-            ignored.count(std::minmax(a->getUserIndex(), b->getUserIndex())))
-            return false;
-        return btCollisionDispatcher::needsCollision(a, b);
-    }
-};
-
-// The proxies' boxes decide here before the narrow phase (a broadphase may keep a pair whose
-// boxes no longer overlap until it next sweeps).
-// btCollisionWorld pads every proxy's box by gContactBreakingThreshold, a fixed 2 cm made for
-// metre-sized bodies: with 2 cm pieces every piece then overlaps ~24 neighbours and each pair runs
-// the narrow phase. PieceWorld pads by the shape's own contact breaking threshold instead (the
-// distance within which its manifolds keep points), so every pair that can have a contact still
-// overlaps. A pair whose exact boxes part loses its algorithm and manifold, as it would on
-// leaving the broadphase: a manifold not refreshed any more would feed stale contacts (even
-// penetrating ones) to the solver.
-void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
-                              const btDispatcherInfo& info) {
-    const btBroadphaseProxy* a = pair.m_pProxy0;
-    const btBroadphaseProxy* b = pair.m_pProxy1;
-    if (!TestAabbAgainstAabb2(a->m_aabbMin, a->m_aabbMax, b->m_aabbMin, b->m_aabbMax)) {
-        if (pair.m_algorithm) {
-            pair.m_algorithm->~btCollisionAlgorithm();
-            dispatcher.freeCollisionAlgorithm(pair.m_algorithm);
-            pair.m_algorithm = nullptr;
-        }
-        return;
-    }
-    btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
-}
-
-class PieceWorld : public btDiscreteDynamicsWorld {
-public:
-    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
-    // btCollisionWorld::updateSingleAabb with the shape's own padding.
-    void updateAabbs() override {
-        for (int i = 0; i < m_collisionObjects.size(); i++) {
-            btCollisionObject* o = m_collisionObjects[i];
-            if (!(m_forceUpdateAllAabbs || o->isActive())) continue;
-            const btCollisionShape* shape = o->getCollisionShape();
-            const btScalar t = shape->getContactBreakingThreshold(gContactBreakingThreshold);
-            const btVector3 pad(t, t, t);
-            btVector3 lo, hi;
-            shape->getAabb(o->getWorldTransform(), lo, hi);
-            lo -= pad, hi += pad;
-            if (getDispatchInfo().m_useContinuous && o->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
-                !o->isStaticOrKinematicObject()) {
-                btVector3 lo2, hi2;
-                shape->getAabb(o->getInterpolationWorldTransform(), lo2, hi2);
-                lo.setMin(lo2 - pad);
-                hi.setMax(hi2 + pad);
-            }
-            m_broadphasePairCache->setAabb(o->getBroadphaseHandle(), lo, hi, m_dispatcher1);
-        }
-    }
-};
-
-struct ContactFound : btCollisionWorld::ContactResultCallback {
-    double threshold;
-    bool found = false;
-    explicit ContactFound(double t) : threshold(t) { m_closestDistanceThreshold = btScalar(t); }
-    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
-                             const btCollisionObjectWrapper*, int, int) override {
-        if (p.getDistance() < threshold) found = true;
-        return 0;
-    }
-};
-
-btTransform make_transform(const Mat3& r, const Vec3& p) { return btTransform(to_bullet_matrix(r), to_bullet(p)); }
-
-// The margin of a piece's convex parts: small against the piece (Bullet's default 4 cm would
-// swallow a 5 cm piece), bounded for GJK's sake.
-double collision_margin(double volume) { return std::clamp(0.02 * std::cbrt(volume), 1e-4, 0.04); }
-
-// A convex part in body coordinates, shrunk by the margin so that hull + margin is the part.
-btConvexHullShape* make_part(const ConvexPart& part, const Mat3& principal, const Vec3& center, double margin) {
-    std::vector<double> coords;
-    for (const Vec3& p : part.points) {
-        const Vec3 local = principal.transpose() * (p - center);
-        coords.insert(coords.end(), {local.x(), local.y(), local.z()});
-    }
-    btConvexHullComputer hull;
-    const btScalar shrunk = hull.compute(coords.data(), 3 * sizeof(double), int(part.points.size()), btScalar(margin),
-                                         btScalar(0.25));
-    auto* shape = new btConvexHullShape();
-    if (shrunk >= 0 && hull.vertices.size() >= 4) {
-        for (int i = 0; i < hull.vertices.size(); ++i) shape->addPoint(hull.vertices[i], false);
-        shape->setMargin(shrunk);
-    } else {  // too thin to shrink: the part as it is, with a tiny margin
-        for (size_t i = 0; i < part.points.size(); ++i)
-            shape->addPoint(btVector3(btScalar(coords[3 * i]), btScalar(coords[3 * i + 1]), btScalar(coords[3 * i + 2])),
-                            false);
-        shape->setMargin(btScalar(1e-4));
-    }
-    shape->recalcLocalAabb();
-    return shape;
-}
-
-// Principal frame of an inertia tensor: a right-handed rotation R (columns = axes) and the
-// principal moments, I = R diag(moments) R^T.
-void principal_frame(const Mat3& inertia, Mat3* r, Vec3* moments) {
-    Eigen::SelfAdjointEigenSolver<Mat3> eigen(inertia);
-    *r = eigen.eigenvectors();
-    *moments = eigen.eigenvalues();
-    for (int c = 0; c < 3; ++c) {  // a sign that does not depend on the solver: largest component positive
-        Eigen::Index k = 0;
-        r->col(c).cwiseAbs().maxCoeff(&k);
-        if ((*r)(k, c) < 0) r->col(c) = -r->col(c);
-    }
-    if (r->determinant() < 0) r->col(2) = -r->col(2);
-}
 
 }  // namespace
 

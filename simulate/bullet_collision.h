@@ -1,0 +1,60 @@
+// Collision filtering for pieces in Bullet, at the scale of centimetre pieces (docs/physics.md
+// sections 5 and 6): which pairs the narrow phase sees, and how tight the broadphase boxes are.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <set>
+#include <utility>
+
+namespace shatter {
+
+// Skips the narrow phase for pairs of pieces that overlapped where they started without being
+// joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
+// contact would push them apart, load their constraints and break them in free fall. A pair is
+// released once its bounding boxes part.
+class PieceDispatcher : public btCollisionDispatcher {
+public:
+    using btCollisionDispatcher::btCollisionDispatcher;
+    std::set<std::pair<int, int>> ignored;
+    bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
+        if (!ignored.empty() && a->getUserIndex() >= 0 && b->getUserIndex() >= 0 &&
+            ignored.count(std::minmax(a->getUserIndex(), b->getUserIndex())))
+            return false;
+        return btCollisionDispatcher::needsCollision(a, b);
+    }
+};
+
+// The proxies' boxes decide here before the narrow phase (a broadphase may keep a pair whose
+// boxes no longer overlap until it next sweeps).
+// btCollisionWorld pads every proxy's box by gContactBreakingThreshold, a fixed 2 cm made for
+// metre-sized bodies: with 2 cm pieces every piece then overlaps ~24 neighbours and each pair runs
+// the narrow phase. PieceWorld pads by the shape's own contact breaking threshold instead (the
+// distance within which its manifolds keep points), so every pair that can have a contact still
+// overlaps. A pair whose exact boxes part loses its algorithm and manifold, as it would on
+// leaving the broadphase: a manifold not refreshed any more would feed stale contacts (even
+// penetrating ones) to the solver.
+void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
+                              const btDispatcherInfo& info);
+
+class PieceWorld : public btDiscreteDynamicsWorld {
+public:
+    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+    // btCollisionWorld::updateSingleAabb with the shape's own padding.
+    void updateAabbs() override;
+};
+
+// Whether contactPairTest found two bodies closer than a threshold (m).
+struct ContactFound : btCollisionWorld::ContactResultCallback {
+    double threshold;
+    bool found = false;
+    explicit ContactFound(double t) : threshold(t) { m_closestDistanceThreshold = btScalar(t); }
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+        if (p.getDistance() < threshold) found = true;
+        return 0;
+    }
+};
+
+}  // namespace shatter
