@@ -30,39 +30,37 @@ void read_mesh(TomlSection& s, MeshSettings& mesh, const std::string& shot_path)
     s.finish();
 }
 
-void read_hollow(TomlSection& s, PrescoreSettings& p) {
-    const toml::node* n = s.node("hollow");
-    if (!n) return;
-    const char* fix = "write hollow = 0.05 (fraction of the diagonal), hollow = \"12mm\", or hollow = false (solid)";
-    if (n->is_boolean()) {
-        if (n->as_boolean()->get()) s.fail(n, "prescore.hollow = true does not say how thick the shell is", fix);
-        p.hollow.reset();
-    } else if (auto v = n->value<double>()) {
-        p.hollow = Length{*v, true};
-    } else if (n->is_string()) {
-        auto len = Length::parse(n->as_string()->get());
-        if (!len) s.fail(n, fmt::format("prescore.hollow = \"{}\" is not a length", n->as_string()->get()), fix);
-        p.hollow = *len;
-    } else {
-        s.fail(n, "prescore.hollow has the wrong type", fix);
-    }
-    if (p.hollow) check_hollow(s.where(n), *p.hollow, false);
-}
-
 // A Length key: a number (fraction of the diagonal) or a string with a unit.
 void read_length(TomlSection& s, const char* key, Length& out,
-                 void (*check)(const std::string&, const Length&, bool)) {
+                 void (*check)(const std::string&, const Length&, bool), const std::string& also = "") {
     const toml::node* n = s.node(key);
     if (!n) return;
-    const std::string fix = fmt::format("write {} = 0.01 (fraction of the diagonal) or {} = \"2mm\"", key, key);
+    const std::string fix = fmt::format("write {} = 0.01 (fraction of the diagonal) or {} = \"2mm\"{}", key, key, also);
     if (auto v = n->value<double>()) {
         out = Length{*v, true};
     } else if (auto len = n->is_string() ? Length::parse(n->as_string()->get()) : std::nullopt) {
         out = *len;
     } else {
-        s.fail(n, fmt::format("{} is not a length", s.key_name(key)), fix);
+        const std::string value = n->is_string() ? fmt::format(" = \"{}\"", n->as_string()->get()) : "";
+        s.fail(n, fmt::format("{}{} is not a length", s.key_name(key), value), fix);
     }
     check(s.where(n), out, false);
+}
+
+// hollow: a length, or false for solid.
+void read_hollow(TomlSection& s, PrescoreSettings& p) {
+    const toml::node* n = s.node("hollow");
+    if (!n) return;
+    if (n->is_boolean()) {
+        if (n->as_boolean()->get())
+            s.fail(n, "prescore.hollow = true does not say how thick the shell is",
+                   "write hollow = 0.05 (fraction of the diagonal), hollow = \"12mm\", or hollow = false (solid)");
+        p.hollow.reset();
+        return;
+    }
+    Length thickness;
+    read_length(s, "hollow", thickness, check_hollow, ", or hollow = false (solid)");
+    p.hollow = thickness;
 }
 
 void read_prescore(TomlSection& s, PrescoreSettings& p) {
@@ -91,34 +89,19 @@ Shot load_shot(const std::string& path) {
         if (n && !n->is_table()) top.fail(n, fmt::format("'{}' must be a table: [{}]", name, name), "see docs/shot.md");
         return n ? n->as_table() : nullptr;
     };
-    if (const toml::table* t = section("mesh")) {
-        TomlSection s(*t, path, "mesh");
-        read_mesh(s, shot.mesh, path);
-    }
-    if (const toml::table* t = section("prescore")) {
-        TomlSection s(*t, path, "prescore");
-        read_prescore(s, shot.prescore);
-    }
-    if (const toml::table* t = section("scene")) {
-        TomlSection s(*t, path, "scene");
-        read_scene_section(s, shot.scene, path);
-    }
-    if (const toml::table* t = section("object")) {
-        TomlSection s(*t, path, "object");
-        read_object_section(s, shot.object);
-    }
-    if (const toml::table* t = section("material")) {
-        TomlSection s(*t, path, "material");
-        read_material_section(s, shot.material);
-    }
-    if (const toml::table* t = section("simulate")) {
-        TomlSection s(*t, path, "simulate");
-        read_simulate_section(s, shot.simulate);
-    }
-    if (const toml::table* t = section("render")) {
-        TomlSection s(*t, path, "render");
-        read_render_section(s, shot.render);
-    }
+    auto read = [&](const char* name, auto reader) {
+        if (const toml::table* t = section(name)) {
+            TomlSection s(*t, path, name);
+            reader(s);
+        }
+    };
+    read("mesh", [&](TomlSection& s) { read_mesh(s, shot.mesh, path); });
+    read("prescore", [&](TomlSection& s) { read_prescore(s, shot.prescore); });
+    read("scene", [&](TomlSection& s) { read_scene_section(s, shot.scene, path); });
+    read("object", [&](TomlSection& s) { read_object_section(s, shot.object); });
+    read("material", [&](TomlSection& s) { read_material_section(s, shot.material); });
+    read("simulate", [&](TomlSection& s) { read_simulate_section(s, shot.simulate); });
+    read("render", [&](TomlSection& s) { read_render_section(s, shot.render); });
     top.finish();
     return shot;
 }

@@ -179,8 +179,8 @@ void BulletWorld::release_parted_pairs() {
         btVector3 lo_a, hi_a, lo_b, hi_b;
         m.pieces[size_t(it->first)].body->getAabb(lo_a, hi_a);
         m.pieces[size_t(it->second)].body->getAabb(lo_b, hi_b);
-        const btScalar gap = btScalar(0.05) * std::min((hi_a - lo_a).minAxis() >= 0 ? (hi_a - lo_a)[(hi_a - lo_a).minAxis()] : 0,
-                                                      (hi_b - lo_b)[(hi_b - lo_b).minAxis()]);
+        const btVector3 ea = hi_a - lo_a, eb = hi_b - lo_b;
+        const btScalar gap = btScalar(0.05) * std::min(ea[ea.minAxis()], eb[eb.minAxis()]);
         const btVector3 pad(gap, gap, gap);
         it = TestAabbAgainstAabb2(lo_a - pad, hi_a + pad, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
     }
@@ -350,20 +350,9 @@ double BulletWorld::current_max_cfm(size_t c, double* min_w) const {
     const auto& j = impl_->joints[c];
     *min_w = 0;
     if (!j.constraint) return 0;
-    const CompliantPointConstraint& k = *j.constraint;
-    const btRigidBody& a = k.getRigidBodyA();
-    const btRigidBody& b = k.getRigidBodyB();
-    const Vec3 ra = to_eigen(a.getWorldTransform().getBasis() * k.getPivotInA());
-    const Vec3 rb = to_eigen(b.getWorldTransform().getBasis() * k.getPivotInB());
-    double cfm = 0;
-    *min_w = INFINITY;
-    for (int r = 0; r < 3; ++r) {
-        const double w = row_inverse_mass(a.getInvMass(), to_eigen(a.getInvInertiaTensorWorld()), ra, b.getInvMass(),
-                                          to_eigen(b.getInvInertiaTensorWorld()), rb, Vec3::Unit(r));
-        *min_w = std::min(*min_w, w);
-        cfm = std::max(cfm, spring_cfm(k.stiffness(), k.damping(), setup_.h, w));
-    }
-    return cfm;
+    const Vec3 w = j.constraint->row_inverse_masses();
+    *min_w = w.minCoeff();
+    return j.constraint->row_cfm(*min_w);  // CFM falls as w grows: the lightest row has the largest
 }
 
 uint32_t BulletWorld::piece_a(size_t c) const { return impl_->joints[c].piece_a; }

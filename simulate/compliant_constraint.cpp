@@ -15,18 +15,26 @@ CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& 
     setJointFeedback(&feedback_);
 }
 
-void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
-    btPoint2PointConstraint::getInfo2(info);
+Vec3 CompliantPointConstraint::row_inverse_masses() const {
     const btRigidBody& a = getRigidBodyA();
     const btRigidBody& b = getRigidBodyB();
     const Vec3 ra = to_eigen(a.getWorldTransform().getBasis() * getPivotInA());
     const Vec3 rb = to_eigen(b.getWorldTransform().getBasis() * getPivotInB());
     const Mat3 ia = to_eigen(a.getInvInertiaTensorWorld());
     const Mat3 ib = to_eigen(b.getInvInertiaTensorWorld());
+    Vec3 w;
+    for (int j = 0; j < 3; ++j) w[j] = row_inverse_mass(a.getInvMass(), ia, ra, b.getInvMass(), ib, rb, Vec3::Unit(j));
+    return w;
+}
+
+double CompliantPointConstraint::row_cfm(double w) const { return spring_cfm(k_, c_, h_, w); }
+
+void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
+    btPoint2PointConstraint::getInfo2(info);
+    const Vec3 w = row_inverse_masses();
     last_max_cfm_ = 0;
     for (int j = 0; j < 3; ++j) {
-        const double w = row_inverse_mass(a.getInvMass(), ia, ra, b.getInvMass(), ib, rb, Vec3::Unit(j));
-        const double cfm = spring_cfm(k_, c_, h_, w);
+        const double cfm = row_cfm(w[j]);
         info->cfm[j * info->rowskip] = btScalar(cfm);
         last_max_cfm_ = std::max(last_max_cfm_, cfm);
     }

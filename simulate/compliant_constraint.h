@@ -6,6 +6,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include "core/geometry.h"
+
 namespace shatter {
 
 class CompliantPointConstraint : public btPoint2PointConstraint {
@@ -18,6 +20,11 @@ public:
     // which the sequential-impulse solver never reads (it uses getInfo2): measured 5% of a
     // 1,000-piece step, skipped.
     void buildJacobian() override {}
+
+    // The three rows' inverse effective masses w (world x, y, z) with the bodies as they are now.
+    Vec3 row_inverse_masses() const;
+    // The CFM of a row with inverse effective mass w at this constraint's k, c and h.
+    double row_cfm(double w) const;
 
     double stiffness() const { return k_; }
     double damping() const { return c_; }
