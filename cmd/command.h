@@ -20,6 +20,9 @@ RunCommand add_info_command(CLI::App& root);
 RunCommand add_render_command(CLI::App& root);
 RunCommand add_diff_command(CLI::App& root);
 RunCommand add_simulate_command(CLI::App& root);
+RunCommand add_run_command(CLI::App& root);
+RunCommand add_batch_command(CLI::App& root);
+RunCommand add_submit_command(CLI::App& root);
 
 // Sets `field` from a flag that was given, after checking it against its limits (a Usage error
 // naming the flag otherwise).

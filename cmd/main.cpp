@@ -24,8 +24,9 @@ std::string option_help(const std::string& description, const std::string& unit,
 int main(int argc, char** argv) {
     using namespace shatter;
     CLI::App app{"shatter: turns a mesh into a fractured animation (energized rigid-body fracture).\n"
-                 "Stages: prescore (mesh -> pieces and constraints), simulate (pieces -> motion and breaks),\n"
-                 "info (summarize any stage file)."};
+                 "run: one shot from mesh to movie. Stages: prescore (mesh -> pieces and constraints), simulate\n"
+                 "(pieces -> motion and breaks), render (frames), diff (compare renders), info (summarize any\n"
+                 "stage file)."};
     app.set_version_flag("--version", std::string("shatter ") + kVersion);
     std::string log_level = "info";
     app.add_option("--log-level", log_level, "diagnostics on stderr: trace, debug, info, warn, error, off (default: info)")
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
     add(add_info_command);
     add(add_render_command);
     add(add_diff_command);
+    add(add_run_command);
+    add(add_batch_command);
+    add(add_submit_command);
 
     try {
         app.parse(argc, argv);

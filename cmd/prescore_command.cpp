@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -40,12 +42,32 @@ Length parse_length_flag(const char* flag, const std::string& text) {
     return *len;
 }
 
+// A generated object ([generate]) is built from boxes: the mesh and tet flags do not apply.
+void refuse_mesh_flags(const PrescoreFlags& f) {
+    const std::vector<std::pair<const char*, bool>> given = {
+        {"--pieces", bool(f.pieces)}, {"--seed", bool(f.seed)}, {"--hollow", bool(f.hollow)}, {"--solid", f.solid},
+        {"--resolution", bool(f.resolution)}, {"--density", bool(f.density)}, {"--scale", bool(f.scale)},
+        {"--wrap-alpha", bool(f.wrap_alpha)}, {"--wrap-offset", bool(f.wrap_offset)},
+        {"--collision-tolerance", bool(f.collision_tolerance)}, {"--collision-max-parts", bool(f.collision_parts)},
+        {"--constraints-per-pair", bool(f.constraints_per_pair)}, {"--repair", bool(f.repair)}};
+    for (const auto& [flag, set] : given)
+        if (set)
+            throw Error(ExitCode::Usage,
+                        fmt::format("{}: {} has [generate]: its object is built from boxes, not from a mesh (fix: "
+                                    "remove {}, or change the [generate] section)", flag, f.input, flag));
+}
+
 Shot shot_from(const PrescoreFlags& f) {
     Shot shot;
     if (is_shot_path(f.input)) {
         shot = load_shot(f.input);
+        if (shot.generate) {
+            refuse_mesh_flags(f);
+            return shot;
+        }
         if (shot.mesh.path.empty())
-            throw_input_error(f.input, "the shot has no [mesh] path", "add path = \"your.obj\" under [mesh]");
+            throw_input_error(f.input, "the shot has no [mesh] path",
+                              "add path = \"your.obj\" under [mesh], or [generate] (docs/shot.md)");
     } else {
         shot.mesh.path = f.input;
     }
@@ -85,7 +107,7 @@ int run(const PrescoreFlags& flags) {
     const std::string ply = (out_path.parent_path() / (out_path.stem().string() + ".pieces.ply")).string();
 
     PrescoreReport report;
-    Model model = prescore(shot.mesh, shot.prescore, &report);
+    Model model = prescore_shot(shot, &report);
     save_model(out, model);
     write_file_atomic(ply, pieces_ply(model));
 
@@ -110,7 +132,11 @@ int run(const PrescoreFlags& flags) {
         phases += fmt::format("{}{} {:.3f}s", phases.empty() ? "" : ", ", name, s);
         seconds += s;
     }
-    fmt::print("prescore: {} pieces, {} tets (per piece: {}), {} constraints between {} piece pairs, "
+    if (shot.generate)
+        fmt::print("generate: a {} of {} boxes, {} constraints between {} piece pairs, mass {:.4g} kg\n",
+                   to_string(shot.generate->kind), model.pieces.size(), model.constraints.size(), pairs, mass);
+    else
+        fmt::print("prescore: {} pieces, {} tets (per piece: {}), {} constraints between {} piece pairs, "
                "{} collision parts, mass {:.4g} kg\n",
                model.pieces.size(), model.mesh.tets.size(), sizes, model.constraints.size(), pairs, parts, mass);
     if (report.repaired) {
@@ -132,7 +158,8 @@ RunCommand add_prescore_command(CLI::App& root) {
     CLI::App* c = root.add_subcommand(
         "prescore", "Tetrahedralize a mesh, optionally hollow it, split it into pieces and place the constraints "
                     "that join them. Writes OUT.model and OUT.pieces.ply.");
-    c->add_option("input", flags->input, "a mesh file (OBJ, PLY, STL, OFF, glTF/GLB, 3DS, FBX, ...) or a shot file (.toml)")
+    c->add_option("input", flags->input, "a mesh file (OBJ, PLY, STL, OFF, glTF/GLB, 3DS, FBX, ...) or a shot file (.toml) with "
+                                     "[mesh] or [generate] (a beam, plate or chain built from boxes)")
         ->required();
     c->add_option("-o,--output", flags->output, option_help("the model file to write", "", "INPUT-STEM.model"));
     c->add_option("--pieces", flags->pieces, option_help("number of pieces", "count", std::to_string(p.pieces)));

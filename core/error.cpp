@@ -9,7 +9,9 @@ void throw_input_error(const std::string& where, const std::string& problem, con
 }
 
 void throw_io_error(const std::string& path, const std::string& reason) {
-    throw Error(ExitCode::Io, "cannot write " + path + ": " + reason);
+    throw Error(ExitCode::Io, "cannot write " + path + ": " + reason +
+                                  " (fix: free space or grant write access, or choose another output folder; "
+                                  "outputs already finished are kept)");
 }
 
 }  // namespace shatter

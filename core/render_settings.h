@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +35,9 @@ struct RenderSettings {
     double key_elevation = 50;            // key light height above the horizon (unit: degrees)
     ColourMode colour_mode = ColourMode::Pieces;
     std::array<float, 3> material_colour = {0.7084f, 0.6514f, 0.5520f};  // linear RGB ("#dbd3c4")
+    // Pieces drawn in their own colour whatever the colour mode (the chain's blue end cubes):
+    // (piece index, linear RGB), from [render] piece_colours = [{piece = 0, colour = "#2f5fd0"}].
+    std::vector<std::pair<uint32_t, std::array<float, 3>>> piece_colours;
     double fracture_tint = 0.55;          // fracture faces: this fraction of the way from the piece colour to white (unit: 1)
     double cavity_shade = 0.45;           // cavity faces: the piece colour times this (unit: 1)
     std::array<float, 3> background = {0.5776f, 0.6445f, 0.7231f};  // linear RGB ("#c8d2dd")

@@ -79,8 +79,47 @@ void read_prescore(TomlSection& s, PrescoreSettings& p) {
 
 bool is_shot_path(const std::string& path) { return std::filesystem::path(path).extension() == ".toml"; }
 
-Shot load_shot(const std::string& path) {
+void apply_shot_overrides(toml::table& root, const std::vector<std::string>& overrides) {
+    for (const std::string& o : overrides) {
+        const std::string where = "--set " + o;
+        const size_t eq = o.find('=');
+        const std::string key = o.substr(0, eq);
+        const size_t dot = key.rfind('.');
+        if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == key.size())
+            throw Error(ExitCode::Usage, fmt::format("{}: not SECTION.KEY=VALUE (fix: e.g. --set material.alpha=0.5; "
+                                                     "the sections and keys are in docs/shot.md)", where));
+        const std::string value = o.substr(eq + 1);
+        toml::table parsed;
+        try {
+            parsed = toml::parse("v = " + value, where);
+        } catch (const toml::parse_error&) {
+            // A bare word (e.g. --set mesh.repair=never) is a string.
+            if (value.empty() || value.find_first_of("\"'[]{}=\n") != std::string::npos)
+                throw Error(ExitCode::Usage, fmt::format("{}: '{}' is not a value (fix: write a number, true/false, "
+                                                         "a \"string\" or an [array] as in the shot file)", where, value));
+            parsed = toml::parse("v = \"" + value + "\"", where);
+        }
+        // Walk (and create) the tables of the dotted section name, then set the key.
+        toml::table* table = &root;
+        size_t start = 0;
+        while (start < dot) {
+            const size_t next = std::min(key.find('.', start), dot);
+            const std::string part = key.substr(start, next - start);
+            toml::node* n = table->get(part);
+            if (!n) n = &table->insert_or_assign(part, toml::table{}).first->second;
+            if (!n->is_table())
+                throw Error(ExitCode::Usage, fmt::format("{}: '{}' is not a table of the shot (fix: --set "
+                                                         "SECTION.KEY=VALUE, see docs/shot.md)", where, part));
+            table = n->as_table();
+            start = next + 1;
+        }
+        table->insert_or_assign(key.substr(dot + 1), std::move(*parsed.get("v")));
+    }
+}
+
+Shot load_shot(const std::string& path, const std::vector<std::string>& overrides) {
     toml::table root = parse_toml_file(path);
+    apply_shot_overrides(root, overrides);
     Shot shot;
     shot.path = path;
     TomlSection top(root, path, "");
@@ -96,6 +135,12 @@ Shot load_shot(const std::string& path) {
         }
     };
     read("mesh", [&](TomlSection& s) { read_mesh(s, shot.mesh, path); });
+    read("generate", [&](TomlSection& s) {
+        if (root.get("mesh"))
+            s.fail(nullptr, "the shot has both [mesh] and [generate]",
+                   "keep [mesh] (fracture a mesh file) or [generate] (a beam, plate or chain built from boxes)");
+        read_generate_section(s, shot.generate.emplace());
+    });
     read("prescore", [&](TomlSection& s) { read_prescore(s, shot.prescore); });
     read("scene", [&](TomlSection& s) { read_scene_section(s, shot.scene, path); });
     read("object", [&](TomlSection& s) { read_object_section(s, shot.object); });

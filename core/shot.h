@@ -1,5 +1,6 @@
 // The shot file: one human-written TOML file (comments allowed) that describes a shot. Sections:
 //   [mesh]      the input mesh and how to repair it
+//   [generate]  or, instead of [mesh], an object built from boxes (beam, plate, chain)
 //   [prescore]  tetrahedralization, hollowing, partition, collision parts
 //   [scene]     gravity, ground, [[scene.colliders]] (static), [[scene.kinematic]] (scripted)
 //   [object]    where the fracturable object starts and how it moves
@@ -10,8 +11,13 @@
 // are errors naming file:line.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
+#include <toml++/toml.h>
+
+#include "core/generate_settings.h"
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
 #include "core/settings.h"
@@ -21,6 +27,7 @@ namespace shatter {
 struct Shot {
     std::string path;  // the shot file itself ("" when the shot came from flags alone)
     MeshSettings mesh;
+    std::optional<GenerateSettings> generate;  // [generate]: set instead of [mesh]
     PrescoreSettings prescore;
     SceneSettings scene;
     ObjectSettings object;
@@ -30,7 +37,13 @@ struct Shot {
 };
 
 // Reads and validates a shot file. The mesh path is made relative to the current directory.
-Shot load_shot(const std::string& path);
+// `overrides` are "SECTION.KEY=VALUE" settings that replace or add keys before validation, the
+// value written as in the file (0.5, "12mm", [0, 1, 0], false; a bare word is taken as a string):
+// `shatter run --set`, and the sweeps of a batch file. Errors in them name "--set SECTION.KEY=VALUE".
+Shot load_shot(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Applies `overrides` (as above) to a parsed shot table. Throws Error(Usage) naming the override.
+void apply_shot_overrides(toml::table& root, const std::vector<std::string>& overrides);
 
 // True when `path` names a shot file (by its extension, .toml) rather than a mesh.
 bool is_shot_path(const std::string& path);

@@ -50,6 +50,30 @@ void read_colour(TomlSection& s, const char* key, std::array<float, 3>& out) {
     out = *c;
 }
 
+// piece_colours = [{piece = 0, colour = "#2f5fd0"}, ...]: each entry a table of its own.
+void read_piece_colours(TomlSection& s, std::vector<std::pair<uint32_t, std::array<float, 3>>>& out) {
+    const toml::node* n = s.node("piece_colours");
+    if (!n) return;
+    const char* fix = "write piece_colours = [{piece = 0, colour = \"#2f5fd0\"}] (piece index, sRGB colour)";
+    const toml::array* a = n->as_array();
+    if (!a) s.fail(n, s.key_name("piece_colours") + " must be an array of {piece, colour} tables", fix);
+    out.clear();
+    for (size_t i = 0; i < a->size(); ++i) {
+        const toml::table* t = a->get(i)->as_table();
+        const std::string name = fmt::format("{}[{}]", s.key_name("piece_colours"), i);
+        if (!t) s.fail(a->get(i), name + " is not a {piece, colour} table", fix);
+        const auto& file = t->source().path;
+        TomlSection e(*t, file ? *file : std::string(), name);
+        uint32_t piece = 0;
+        std::array<float, 3> colour{};
+        if (!e.integer("piece", piece, Limits{0, 1e9, "(piece index)"}) || !e.node("colour"))
+            s.fail(t, name + " needs both piece and colour", fix);
+        read_colour(e, "colour", colour);
+        e.finish();
+        out.emplace_back(piece, colour);
+    }
+}
+
 }  // namespace
 
 const char* to_string(ColourMode m) { return m == ColourMode::Pieces ? "pieces" : "material"; }
@@ -113,6 +137,7 @@ void read_render_section(TomlSection& s, RenderSettings& r) {
         r.colour_mode = *m;
     }
     read_colour(s, "material_colour", r.material_colour);
+    read_piece_colours(s, r.piece_colours);
     s.number("fracture_tint", r.fracture_tint, kTintLimits);
     s.number("cavity_shade", r.cavity_shade, kTintLimits);
     read_colour(s, "background", r.background);
@@ -133,6 +158,11 @@ nlohmann::ordered_json to_json(const RenderSettings& s) {
     j["key_elevation"] = s.key_elevation;
     j["colour_mode"] = to_string(s.colour_mode);
     j["material_colour"] = srgb_hex(s.material_colour);
+    if (!s.piece_colours.empty()) {
+        nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
+        for (const auto& [piece, colour] : s.piece_colours) pieces.push_back({{"piece", piece}, {"colour", srgb_hex(colour)}});
+        j["piece_colours"] = pieces;
+    }
     j["fracture_tint"] = s.fracture_tint;
     j["cavity_shade"] = s.cavity_shade;
     j["background"] = srgb_hex(s.background);

@@ -210,6 +210,10 @@ void read_table_array(TomlSection& s, const char* key, const std::string& shot_p
 
 }  // namespace
 
+bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const Limits& limits, const char* example) {
+    return numbers(s, key, out, n, limits, example);
+}
+
 void read_scene_section(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
     vec3(s, "gravity", scene.gravity, kGravityLimits, "[0, -9.81, 0]");
     s.boolean("ground", scene.ground);

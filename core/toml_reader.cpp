@@ -41,6 +41,7 @@ TomlSection::TomlSection(const toml::table& table, std::string file, std::string
 
 std::string TomlSection::where(const toml::node* n) const {
     const auto& src = n ? n->source() : table_.source();
+    if (src.path && *src.path != file_) return *src.path;  // a value given on the command line (--set)
     if (src.begin.line == 0) return file_;
     return fmt::format("{}:{}", file_, src.begin.line);
 }

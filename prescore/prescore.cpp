@@ -23,6 +23,7 @@
 #include "prescore/repair.h"
 #include "prescore/tet_topology.h"
 #include "prescore/tetrahedralize.h"
+#include "scenes/paper_scenes.h"
 
 namespace shatter {
 
@@ -185,6 +186,22 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     timer.lap("constraints");
     build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
     timer.lap("pieces");
+    return model;
+}
+
+Model prescore_shot(const Shot& shot, PrescoreReport* report_out) {
+    if (!shot.generate) {
+        if (shot.mesh.path.empty())
+            throw_input_error(shot.path, "the shot has neither [mesh] nor [generate]",
+                              "add [mesh] with path = \"your.obj\", or [generate] with kind = \"beam\", \"plate\" or "
+                              "\"chain\" (docs/shot.md)");
+        return prescore(shot.mesh, shot.prescore, report_out);
+    }
+    PrescoreReport local;
+    PrescoreReport& report = report_out ? *report_out : local;
+    PhaseTimer timer(report);
+    Model model = generate_model(*shot.generate);
+    timer.lap("generate");
     return model;
 }
 

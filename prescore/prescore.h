@@ -13,6 +13,7 @@
 
 #include "core/model.h"
 #include "core/settings.h"
+#include "core/shot.h"
 #include "prescore/mesh_check.h"
 
 namespace shatter {
@@ -31,5 +32,10 @@ struct PrescoreReport {
 // Runs every phase; throws Error for bad input (unreadable mesh, mesh that cannot be
 // tetrahedralized and may not be repaired, more pieces than tets, ...).
 Model prescore(const MeshSettings& mesh, const PrescoreSettings& settings, PrescoreReport* report);
+
+// The shot's model: built from boxes when the shot has [generate] (scenes/paper_scenes.h; no
+// mesh, no tets, report->phase_seconds holds "generate"), else prescore(shot.mesh,
+// shot.prescore, report). Throws Error(BadInput) naming the shot when it has neither.
+Model prescore_shot(const Shot& shot, PrescoreReport* report);
 
 }  // namespace shatter

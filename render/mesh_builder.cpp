@@ -35,6 +35,8 @@ Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s) {
 }
 
 Colour piece_base_colour(uint32_t id, const RenderSettings& s) {
+    for (const auto& [piece, colour] : s.piece_colours)
+        if (piece == id) return colour;
     return s.colour_mode == ColourMode::Pieces ? piece_colour(id) : s.material_colour;
 }
 

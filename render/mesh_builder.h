@@ -27,7 +27,8 @@ using Colour = std::array<float, 3>;
 // The face colours of a piece: outer = base, fracture = base mixed toward white by
 // `fracture_tint`, cavity = base times `cavity_shade`.
 Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s);
-// The base colour of piece `id`: the palette (core/palette.h) or the material colour.
+// The base colour of piece `id`: its piece_colours entry, else the palette (core/palette.h) or
+// the material colour.
 Colour piece_base_colour(uint32_t id, const RenderSettings& s);
 
 std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const RenderSettings& s);

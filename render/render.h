@@ -57,6 +57,9 @@ struct RenderOptions {
     bool progress = true;  // a progress bar on stderr
     bool overlap = true;   // encode PNGs on a second thread while the next frame renders
     std::string size_source = "--size";  // where the image size came from, for error messages
+    // Frames whose file exists are not drawn again (a resumed run: every frame file was written
+    // atomically, and a frame's bytes do not depend on which run drew it).
+    bool skip_existing = false;
 };
 
 // The file name of frame f: frame_00012.png (five digits, more when f >= 100000).

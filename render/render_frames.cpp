@@ -56,11 +56,17 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
     std::optional<Progress> progress;
     if (options.progress) progress.emplace("render", range.end - range.first);
     for (uint32_t f = range.first; f < range.end; ++f) {
+        const std::string path = (std::filesystem::path(out_dir) / frame_file_name(f)).string();
+        std::error_code ec;
+        if (options.skip_existing && std::filesystem::exists(path, ec)) {
+            if (progress) progress->advance();
+            continue;
+        }
         std::vector<uint8_t> rgba = writer.buffer();
         renderer.render(f, rgba.data());
         report.draw_seconds += renderer.last_times().draw;
         report.readback_seconds += renderer.last_times().readback;
-        writer.push(std::move(rgba), (std::filesystem::path(out_dir) / frame_file_name(f)).string());
+        writer.push(std::move(rgba), path);
         if (progress) progress->advance();
         ++report.frames;
     }

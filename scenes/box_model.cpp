@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace shatter {
 
@@ -44,33 +46,62 @@ void BoxModelBuilder::join(uint32_t a, uint32_t b, const Vec3& pivot, double are
     model_.constraints.push_back(c);
 }
 
-void BoxModelBuilder::join_face(uint32_t a, uint32_t b, uint32_t per_side) {
+BoxModelBuilder::SharedFace BoxModelBuilder::shared_face(uint32_t a, uint32_t b) const {
     const MassProperties& pa = model_.pieces[a].mass;
     const MassProperties& pb = model_.pieces[b].mass;
     const Vec3 d = pb.center - pa.center;
-    int axis = 0;
-    d.cwiseAbs().maxCoeff(&axis);
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    // The shared face: between the two centres along `axis`, the overlap of the boxes across.
+    SharedFace f;
+    d.cwiseAbs().maxCoeff(&f.axis);
+    f.u = (f.axis + 1) % 3;
+    f.v = (f.axis + 2) % 3;
+    // Between the two centres along `axis`, the overlap of the boxes across.
     const Vec3 ea = model_.pieces[a].collision[0].points[7] - pa.center;  // +x+y+z corner: half extents
     const Vec3 eb = model_.pieces[b].collision[0].points[7] - pb.center;
-    Vec3 lo, hi;
-    for (int k : {u, v}) {
-        lo[k] = std::max(pa.center[k] - ea[k], pb.center[k] - eb[k]);
-        hi[k] = std::min(pa.center[k] + ea[k], pb.center[k] + eb[k]);
+    for (int k : {f.u, f.v}) {
+        f.lo[k] = std::max(pa.center[k] - ea[k], pb.center[k] - eb[k]);
+        f.hi[k] = std::min(pa.center[k] + ea[k], pb.center[k] + eb[k]);
     }
-    const double plane = d[axis] > 0 ? pa.center[axis] + ea[axis] : pa.center[axis] - ea[axis];
-    const double area = (hi[u] - lo[u]) * (hi[v] - lo[v]) / double(per_side * per_side);
+    f.plane = d[f.axis] > 0 ? pa.center[f.axis] + ea[f.axis] : pa.center[f.axis] - ea[f.axis];
+    return f;
+}
+
+void BoxModelBuilder::join_face(uint32_t a, uint32_t b, uint32_t per_side) {
+    const SharedFace f = shared_face(a, b);
+    const double area = (f.hi[f.u] - f.lo[f.u]) * (f.hi[f.v] - f.lo[f.v]) / double(per_side * per_side);
     for (uint32_t i = 0; i < per_side; ++i)
         for (uint32_t j = 0; j < per_side; ++j) {
             // 1 per side: the centre; n per side: from corner to corner.
             const double s = per_side == 1 ? 0.5 : double(i) / (per_side - 1);
             const double t = per_side == 1 ? 0.5 : double(j) / (per_side - 1);
             Vec3 p;
-            p[axis] = plane;
-            p[u] = lo[u] + s * (hi[u] - lo[u]);
-            p[v] = lo[v] + t * (hi[v] - lo[v]);
+            p[f.axis] = f.plane;
+            p[f.u] = f.lo[f.u] + s * (f.hi[f.u] - f.lo[f.u]);
+            p[f.v] = f.lo[f.v] + t * (f.hi[f.v] - f.lo[f.v]);
             join(a, b, p, area);
+        }
+}
+
+void BoxModelBuilder::join_face_gauss(uint32_t a, uint32_t b, uint32_t per_side) {
+    // Gauss-Legendre nodes and weights on [-1, 1] (weights sum to 2), n = 1 to 5.
+    static const std::vector<std::vector<std::pair<double, double>>> kRules = {
+        {{0.0, 2.0}},
+        {{-0.5773502691896257, 1.0}, {0.5773502691896257, 1.0}},
+        {{-0.7745966692414834, 0.5555555555555556}, {0.0, 0.8888888888888888}, {0.7745966692414834, 0.5555555555555556}},
+        {{-0.8611363115940526, 0.3478548451374538}, {-0.3399810435848563, 0.6521451548625461},
+         {0.3399810435848563, 0.6521451548625461}, {0.8611363115940526, 0.3478548451374538}},
+        {{-0.9061798459185930, 0.2369268850561891}, {-0.5384693101056831, 0.4786286704993665}, {0.0, 0.5688888888888889},
+         {0.5384693101056831, 0.4786286704993665}, {0.9061798459185930, 0.2369268850561891}}};
+    assert(per_side >= 1 && per_side <= kRules.size());
+    const SharedFace f = shared_face(a, b);
+    const double area = (f.hi[f.u] - f.lo[f.u]) * (f.hi[f.v] - f.lo[f.v]);
+    const Vec3 mid = 0.5 * (f.lo + f.hi), half = 0.5 * (f.hi - f.lo);
+    for (const auto& [s, ws] : kRules[per_side - 1])
+        for (const auto& [t, wt] : kRules[per_side - 1]) {
+            Vec3 p;
+            p[f.axis] = f.plane;
+            p[f.u] = mid[f.u] + s * half[f.u];
+            p[f.v] = mid[f.v] + t * half[f.v];
+            join(a, b, p, area * ws * wt / 4);
         }
 }
 

@@ -22,10 +22,22 @@ public:
     // Joins two boxes that share a face with `per_side` x `per_side` constraints spread over
     // the face (1: its centre; 2: its four corners), sharing the face's area equally.
     void join_face(uint32_t a, uint32_t b, uint32_t per_side);
+    // Joins two boxes that share a face with `per_side` x `per_side` constraints (1 to 5) at the
+    // face's Gauss-Legendre points, each standing for its weight's share of the face's area: a
+    // stress varying linearly over the face (bending) then gives the face's exact force and
+    // moment (second moment of area A h^2 / 12 per axis, not the corners' A h^2 / 4).
+    void join_face_gauss(uint32_t a, uint32_t b, uint32_t per_side);
     Model& model() { return model_; }
     Model take();  // sorted constraints, as prescore writes them
 
 private:
+    // The face boxes a and b share: its normal axis, the two axes across it, its plane and extent.
+    struct SharedFace {
+        int axis = 0, u = 1, v = 2;
+        double plane = 0;
+        Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+    };
+    SharedFace shared_face(uint32_t a, uint32_t b) const;
     Model model_;
 };
 

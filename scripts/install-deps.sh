@@ -18,6 +18,9 @@ PACKAGES=(
   libgtest-dev
   # the demo mesh (/usr/share/glmark2/models/bunny.obj)
   glmark2-data
+  # pipeline: MP4 encoding, energy plots and charts (Debian's /usr/bin/python3), Slurm fan-out
+  # (tested against a single-node cluster on loopback)
+  ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
 )
 
 missing=()

@@ -1,0 +1,109 @@
+// The paper's scenes (assets/beam, plate, chain, bunny_sphere) over their alpha sweeps: prints
+// one CSV row per scene and alpha with the breaks, the energy books and the fragments' energy
+// after the first break (docs/scenes.md holds the results).
+//
+//   scenes_bench [SCENE ...] [--set SECTION.KEY=VALUE ...] [--alpha A,B,...]
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/shot.h"
+#include "prescore/prescore.h"
+#include "simulate/simulate.h"
+
+namespace shatter {
+namespace {
+
+std::vector<double> default_alphas(const std::string& scene) {
+    if (scene == "beam" || scene == "plate") return {0, 0.5, 1, 1.5};
+    return {0, 0.5, 1, 2};
+}
+
+// The first recorded frame at or after t (the last if none).
+const EnergySample& sample_at(const std::vector<EnergySample>& e, double t) {
+    for (const EnergySample& s : e)
+        if (s.time >= t - 1e-9) return s;
+    return e.back();
+}
+
+size_t fragments(const Model& model, const SimulationResult& r) {
+    std::vector<uint32_t> parent(model.pieces.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto find = [&](uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    std::vector<char> broken(model.constraints.size(), 0);
+    for (const BreakRecord& b : r.breaks) broken[b.constraint] = 1;
+    for (size_t c = 0; c < model.constraints.size(); ++c)
+        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
+    size_t n = 0;
+    for (uint32_t p = 0; p < parent.size(); ++p) n += find(p) == p;
+    return n;
+}
+
+void run(const std::string& scene, const std::vector<std::string>& sets, std::vector<double> alphas) {
+    const bool file = scene.size() > 5 && scene.substr(scene.size() - 5) == ".toml";  // a shot file, not a name
+    const Shot shot = load_shot(file ? scene : SHATTER_SOURCE_DIR "/assets/" + scene + ".toml", sets);
+    const Model model = prescore_shot(shot, nullptr);
+    if (alphas.empty()) alphas = default_alphas(scene);
+    for (double alpha : alphas) {
+        SimulationInput in{shot.scene, shot.object, shot.material, shot.simulate};
+        in.material.alpha = alpha;
+        const auto start = std::chrono::steady_clock::now();
+        const SimulationResult r = simulate(model, in, "bench");
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        double stored = 0, injected = 0;
+        for (const BreakRecord& b : r.breaks) {
+            stored += b.kicks.stored_energy;
+            injected += b.injected_energy;
+        }
+        const double t0 = r.breaks.empty() ? -1 : r.breaks.front().time;
+        double before = 0, at_break = 0, later = 0, mech = 0;
+        if (!r.breaks.empty()) {
+            const EnergySample* pre = &r.energy.front();
+            for (const EnergySample& e : r.energy)
+                if (e.time < t0 - 1e-9) pre = &e;
+            const EnergySample& first = sample_at(r.energy, t0);
+            const EnergySample& post = sample_at(r.energy, t0 + 0.1);
+            before = pre->kinetic;
+            at_break = first.kinetic;
+            later = post.kinetic;
+            mech = post.kinetic + post.potential - pre->kinetic - pre->potential;
+        }
+        std::printf("%s,%g,%zu,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f\n", scene.c_str(), alpha, r.breaks.size(), t0,
+                    stored, injected, before, at_break, later, mech, fragments(model, r), seconds);
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace
+}  // namespace shatter
+
+int main(int argc, char** argv) {
+    std::vector<std::string> scenes, sets;
+    std::vector<double> alphas;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--set" && i + 1 < argc) {
+            sets.push_back(argv[++i]);
+        } else if (a == "--alpha" && i + 1 < argc) {
+            std::stringstream list(argv[++i]);
+            for (std::string x; std::getline(list, x, ',');) alphas.push_back(std::stod(x));
+        } else {
+            scenes.push_back(a);
+        }
+    }
+    if (scenes.empty()) scenes = {"beam", "plate", "chain", "bunny_sphere"};
+    std::printf("scene,alpha,breaks,first_break_s,stored_J,injected_J,kinetic_before_J,kinetic_at_break_frame_J,"
+                "kinetic_0.1s_after_J,mechanical_gain_0.1s_after_J,fragments,seconds\n");
+    try {
+        for (const std::string& s : scenes) shatter::run(s, sets, alphas);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

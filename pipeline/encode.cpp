@@ -1,0 +1,97 @@
+// The MP4 of a run, by ffmpeg (libx264), byte-identical across runs.
+//
+// Determinism: x264's output depends on its thread count (frame threads split the rate control
+// and lookahead differently), so the count is fixed (kThreads) rather than left to the number of
+// cores; x264 is deterministic for a given count unless asked not to be (--non-deterministic).
+// The muxer and the codec are told +bitexact (no encoder version string, no creation time),
+// metadata is not copied from the input, and the RGB -> YUV conversion is swscale's bit-exact
+// path with the BT.709 matrix (HD players assume it; the stream is tagged the same way).
+//
+// File names: ffmpeg runs in the frames directory with the relative pattern frame_%05d.png, so a
+// '%' (or anything else) in the directory's name is never seen by the image2 pattern parser;
+// the output is an absolute "file:" URL, so a ':' in it cannot be read as a protocol. Arguments
+// go as an argv vector (pipeline/process.h): no shell ever sees a name.
+#include "pipeline/encode.h"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "pipeline/process.h"
+#include "pipeline/tool_output.h"
+
+namespace shatter {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kThreads = 4;                  // fixed: x264's bytes depend on it (see above)
+constexpr const char* kPreset = "veryfast";  // 120 frames at 1280x720: ~1.8 s of CPU
+constexpr const char* kQuality = "18";       // x264 CRF: visually lossless for rendered frames
+
+std::string frame_name(uint32_t i) { return fmt::format("frame_{:05d}.png", i); }
+
+void check_frames(const std::string& frames_dir, uint32_t frames, double fps) {
+    if (frames == 0) throw_input_error(frames_dir, "no frames to encode (0 frames)", "render the frames first");
+    if (!(fps > 0.0 && fps <= 1000.0))
+        throw_input_error(frames_dir, fmt::format("frame rate {} is outside (0, 1000] fps", fps),
+                          "give a frame rate in (0, 1000]");
+    std::error_code ec;
+    if (!fs::is_directory(frames_dir, ec))
+        throw_input_error(frames_dir, "frames directory not found", "render the frames first (shatter render)");
+    for (uint32_t i = 0; i < frames; ++i)
+        if (!fs::is_regular_file(fs::path(frames_dir) / frame_name(i), ec))
+            throw_input_error((fs::path(frames_dir) / frame_name(i)).string(),
+                              fmt::format("frame {} of {} is missing", i, frames),
+                              "render all frames first (shatter render)");
+}
+
+// Pad to even sizes (yuv420p halves both), then RGB -> BT.709 limited-range YUV, bit-exact.
+constexpr const char* kFilters =
+    "pad=ceil(iw/2)*2:ceil(ih/2)*2,"
+    "scale=out_color_matrix=bt709:out_range=tv:flags=accurate_rnd+bitexact,format=yuv420p";
+
+// ffmpeg's argv, run in the frames directory; `output` absolute.
+std::vector<std::string> ffmpeg_arguments(const std::string& ffmpeg, uint32_t frames, double fps,
+                                          const std::string& output) {
+    return {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
+            "-framerate", fmt::format("{}", fps), "-start_number", "0", "-i", "frame_%05d.png",
+            "-frames:v", std::to_string(frames), "-vf", kFilters,
+            "-c:v", "libx264", "-preset", kPreset, "-crf", kQuality, "-threads", std::to_string(kThreads),
+            "-pix_fmt", "yuv420p", "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709",
+            "-color_range", "tv", "-fflags", "+bitexact", "-flags:v", "+bitexact", "-map_metadata", "-1",
+            "-movflags", "+faststart", "-f", "mp4", "file:" + output};
+}
+
+// The error for a failed ffmpeg run: its last lines, and the command to see more.
+[[noreturn]] void throw_ffmpeg_failure(const std::string& ffmpeg, const std::string& frames_dir, uint32_t frames,
+                                       double fps, const std::string& mp4_path, const ProcessResult& result) {
+    const std::string output = last_lines(result.err + result.out, 8);
+    const std::string rerun = command_line({frames_dir}) + " && " +
+                              command_line(ffmpeg_arguments(ffmpeg, frames, fps, fs::absolute(mp4_path).string()));
+    throw Error(ExitCode::Tool, fmt::format("{}: ffmpeg failed ({}) encoding {} frames of {}:\n{}\n(fix: check that the "
+                                            "frames are readable PNGs of one size and that ffmpeg has libx264; to see "
+                                            "more, run: cd {})",
+                                            mp4_path, result.describe(), frames, frames_dir,
+                                            output.empty() ? "(no output)" : output, rerun));
+}
+
+}  // namespace
+
+void encode_mp4(const std::string& frames_dir, uint32_t frames, double fps, const std::string& mp4_path) {
+    const std::optional<std::string> ffmpeg = find_program("ffmpeg");
+    if (!ffmpeg)
+        throw Error(ExitCode::Tool, mp4_path + ": ffmpeg not found on PATH, cannot encode the MP4 "
+                                    "(fix: install ffmpeg: make deps, or apt-get install ffmpeg)");
+    check_frames(frames_dir, frames, fps);
+    ToolOutput output(mp4_path, ".mp4");  // removed again unless committed
+    ProcessOptions options;
+    options.working_directory = frames_dir;
+    const ProcessResult result = run_process(ffmpeg_arguments(*ffmpeg, frames, fps, output.path()), options);
+    if (!result.ok()) throw_ffmpeg_failure(*ffmpeg, frames_dir, frames, fps, mp4_path, result);
+    output.commit();
+}
+
+}  // namespace shatter

@@ -1,0 +1,529 @@
+#include "pipeline/run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <numeric>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/generate_settings.h"
+#include "core/model_io.h"
+#include "core/shot.h"
+#include "core/trajectory.h"
+#include "pipeline/encode.h"
+#include "pipeline/export_glb.h"
+#include "pipeline/plot.h"
+#include "pipeline/sheets.h"
+#include "pipeline/stage_cache.h"
+#include "prescore/pieces_ply.h"
+#include "prescore/prescore.h"
+#include "render/render.h"
+#include "simulate/recording.h"
+#include "simulate/simulate.h"
+
+namespace shatter {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+const char* to_string(Stage stage) {
+    switch (stage) {
+        case Stage::Prescore: return "prescore";
+        case Stage::Simulate: return "simulate";
+        case Stage::Render: return "render";
+        case Stage::Encode: return "encode";
+        case Stage::Sheet: return "sheet";
+        case Stage::Plot: return "plot";
+        case Stage::Export: return "export";
+    }
+    return "?";
+}
+
+std::optional<Stage> parse_stage(const std::string& text) {
+    for (Stage s : kAllStages)
+        if (text == to_string(s)) return s;
+    return std::nullopt;
+}
+
+const char* to_string(StageOutcome outcome) {
+    switch (outcome) {
+        case StageOutcome::Ran: return "ran";
+        case StageOutcome::UpToDate: return "up to date";
+        case StageOutcome::FromCache: return "from cache";
+        case StageOutcome::NotAsked: return "not asked";
+        case StageOutcome::Failed: return "FAILED";
+    }
+    return "?";
+}
+
+std::string default_output_dir(const std::string& shot) {
+    return (fs::path("out") / fs::path(shot).stem()).string();
+}
+
+namespace {
+
+// Adds run.log in the output folder to the logger for the lifetime of a run.
+class LogFile {
+public:
+    explicit LogFile(const std::string& path) {
+        try {
+            sink_ = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false);
+            sink_->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
+            spdlog::default_logger()->sinks().push_back(sink_);
+        } catch (const spdlog::spdlog_ex& e) {
+            throw_io_error(path, e.what());
+        }
+    }
+    ~LogFile() {
+        auto& sinks = spdlog::default_logger()->sinks();
+        sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
+    }
+
+private:
+    std::shared_ptr<spdlog::sinks::basic_file_sink_mt> sink_;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The frames of chunk `chunk` of `chunks` equal ranges of [0, frames).
+FrameRange chunk_range(uint32_t frames, uint32_t chunk, uint32_t chunks) {
+    return {uint32_t(uint64_t(frames) * chunk / chunks), uint32_t(uint64_t(frames) * (chunk + 1) / chunks)};
+}
+
+// The facts of a finished simulation that the summary and batch tables report.
+json simulation_facts(const Model& model, const Trajectory& traj, const std::string& breaks_jsonl,
+                      const std::string& energy_csv_text) {
+    // Breaks: count, energies, and which constraints are gone.
+    std::vector<uint32_t> parent(model.pieces.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    std::function<uint32_t(uint32_t)> find = [&](uint32_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+    std::vector<bool> broken(model.constraints.size(), false);
+    size_t breaks = 0;
+    double stored = 0, injected = 0, first_break = -1;
+    std::istringstream lines(breaks_jsonl);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        const nlohmann::json b = nlohmann::json::parse(line);
+        ++breaks;
+        stored += b.at("stored_energy_J").get<double>();
+        injected += b.at("injected_energy_J").get<double>();
+        if (first_break < 0) first_break = b.at("time_s").get<double>();
+        const uint32_t c = b.at("constraint").get<uint32_t>();
+        if (c < broken.size()) broken[c] = true;
+    }
+    for (size_t c = 0; c < model.constraints.size(); ++c)
+        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
+    size_t fragments = 0;
+    for (uint32_t i = 0; i < parent.size(); ++i) fragments += find(i) == i;
+
+    // Kinetic energy 0.1 s after the first break, from the energy books.
+    std::optional<double> kinetic_after;
+    if (first_break >= 0) {
+        std::istringstream rows(energy_csv_text);
+        std::string row;
+        std::getline(rows, row);  // header
+        double best = 1e300;
+        while (std::getline(rows, row)) {
+            double t = 0, k = 0;
+            if (std::sscanf(row.c_str(), "%lf,%lf", &t, &k) != 2) continue;
+            if (std::abs(t - (first_break + 0.1)) < best) best = std::abs(t - (first_break + 0.1)), kinetic_after = k;
+        }
+    }
+    // Peak piece speed between recorded frames.
+    double peak_speed = 0;
+    for (uint32_t f = 1; f < traj.frames(); ++f)
+        for (uint32_t b = 0; b < traj.pieces; ++b)
+            peak_speed = std::max(peak_speed, double((traj.pose(f, b).position - traj.pose(f - 1, b).position).norm()) * traj.fps);
+
+    json j;
+    j["frames"] = traj.frames();
+    j["fps"] = traj.fps;
+    j["complete"] = traj.complete;
+    j["breaks"] = breaks;
+    j["first_break_s"] = first_break >= 0 ? json(first_break) : json(nullptr);
+    j["stored_energy_J"] = stored;
+    j["injected_energy_J"] = injected;
+    j["fragments"] = fragments;
+    j["kinetic_energy_0.1s_after_first_break_J"] = kinetic_after ? json(*kinetic_after) : json(nullptr);
+    j["peak_piece_speed_m_per_s"] = peak_speed;
+    return j;
+}
+
+class Runner {
+public:
+    explicit Runner(const RunOptions& options)
+        : options_(options),
+          shot_(load_shot(options.shot, options.overrides)),
+          dir_(options.output_dir.empty() ? default_output_dir(options.shot) : options.output_dir),
+          name_(fs::path(options.shot).stem().string()),
+          stamps_(dir_.string()),
+          cache_(options.cache_dir) {
+        if (options.chunks == 0 || options.chunk >= options.chunks)
+            throw Error(ExitCode::Usage, fmt::format("--chunk {}/{}: not a chunk (fix: I/N with 0 <= I < N)",
+                                                     options.chunk, options.chunks));
+        result_.output_dir = dir_.string();
+        result_.name = name_;
+    }
+
+    RunResult run() {
+        make_directories(dir_.string());
+        if (options_.chunks == 1) remove_stale_temporaries();
+        LogFile log((dir_ / "run.log").string());
+        spdlog::info("run: {} -> {}{}", options_.shot, dir_.string(),
+                     options_.overrides.empty() ? "" : fmt::format(" (--set {})", fmt::join(options_.overrides, " ")));
+        prescore_stage();
+        simulate_stage();
+        render_stage();
+        finishing_stage(Stage::Encode, {name_ + ".mp4"}, [&] { return json{{"render", render_key()}}; },
+                        [&] { encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4")); });
+        finishing_stage(Stage::Sheet, {name_ + ".contact.png"}, [&] { return json{{"render", render_key()}}; },
+                        [&] { write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png")); });
+        finishing_stage(Stage::Plot, {name_ + ".energy.png"},
+                        [&] { return json{{"energy", file_hash(file(".energy.csv"))}, {"title", name_}}; },
+                        [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); });
+        finishing_stage(Stage::Export, {name_ + ".glb"}, [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}}; },
+                        [&] { export_glb(model(), trajectory(), file(".glb")); });
+        write_summary();
+        return std::move(result_);
+    }
+
+    // The stages whose outputs are current, in pipeline order up to the first that is not (the
+    // stamps' check, without running anything; for `shatter submit`). Finishing stages are not
+    // checked: they are cheap and always left to the final job.
+    std::vector<Stage> up_to_date() {
+        std::vector<Stage> out;
+        if (!stamps_.current("prescore", stage_key("prescore", prescore_inputs()))) return out;
+        out.push_back(Stage::Prescore);
+        if (!stamps_.current("simulate", stage_key("simulate", simulate_inputs()))) return out;
+        out.push_back(Stage::Simulate);
+        if (stamps_.current("render", render_key()) && all_frames_present()) out.push_back(Stage::Render);
+        return out;
+    }
+
+private:
+    std::string file(const char* suffix) const { return (dir_ / (name_ + suffix)).string(); }
+
+    // A killed run leaves NAME.tmp.PID files (never mistaken for outputs); the next run removes
+    // them. Not while render chunks of a cluster job may be writing theirs (chunks > 1).
+    void remove_stale_temporaries() const {
+        std::error_code ec;
+        for (const fs::path& d : {dir_, dir_ / "frames", dir_ / ".shatter"})
+            for (const auto& entry : fs::directory_iterator(d, ec))
+                if (entry.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(entry.path(), ec);
+    }
+    std::string frames_dir() const { return (dir_ / "frames").string(); }
+
+    bool asked(Stage s) const {
+        return options_.stages.empty() || std::find(options_.stages.begin(), options_.stages.end(), s) != options_.stages.end();
+    }
+    // True when a stage after `s` is asked for (and so needs the outputs of `s`).
+    bool needed_later(Stage s) const {
+        for (Stage later : kAllStages)
+            if (later > s && asked(later)) return true;
+        return false;
+    }
+    StageReport& report(Stage s) {
+        result_.stages.push_back({s, StageOutcome::NotAsked, 0, {}});
+        return result_.stages.back();
+    }
+    void log_outcome(const StageReport& r) {
+        spdlog::info("{}: {} ({:.2f}s)", to_string(r.stage), to_string(r.outcome), r.seconds);
+    }
+    // A stage that was not asked for must be up to date for the stages after it.
+    [[noreturn]] void missing(Stage s, const std::string& what) const {
+        throw Error(ExitCode::BadInput,
+                    fmt::format("{}: {} is missing or out of date (fix: run its stage first: shatter run {} -o {} "
+                                "--stages {})", dir_.string(), what, options_.shot, dir_.string(), to_string(s)));
+    }
+
+    // ---- prescore
+    json prescore_inputs() const {
+        json mesh = to_json(shot_.mesh);
+        mesh.erase("path");
+        if (!shot_.mesh.path.empty()) {
+            mesh["file"] = fs::path(shot_.mesh.path).filename().string();
+            mesh["hash"] = file_hash(shot_.mesh.path);
+        }
+        json inputs = {{"mesh", mesh}, {"prescore", to_json(shot_.prescore)}};
+        if (shot_.generate) inputs["generate"] = to_json(*shot_.generate);
+        return inputs;
+    }
+    void prescore_stage() {
+        StageReport& r = report(Stage::Prescore);
+        if (!asked(Stage::Prescore) && !needed_later(Stage::Prescore)) return;
+        const auto start = std::chrono::steady_clock::now();
+        const std::string key = stage_key("prescore", prescore_inputs());
+        const StageCache::Files files = {{"model", name_ + ".model"}, {"pieces.ply", name_ + ".pieces.ply"}};
+        if (!asked(Stage::Prescore)) {
+            if (!stamps_.current("prescore", key)) missing(Stage::Prescore, "the model");
+            return;
+        }
+        r.outcome = cached_stage("prescore", key, files, [&] {
+            PrescoreReport report;
+            const Model model = prescore_shot(shot_, &report);
+            save_model(file(".model"), model);
+            write_file_atomic(file(".pieces.ply"), pieces_ply(model));
+            spdlog::info("prescore: {} pieces, {} tets, {} constraints", model.pieces.size(), model.mesh.tets.size(),
+                         model.constraints.size());
+        });
+        r.seconds = seconds_since(start);
+        log_outcome(r);
+    }
+
+    // Runs `compute` unless the stamp is current or the shared cache has the outputs.
+    StageOutcome cached_stage(const std::string& stage, const std::string& key, const StageCache::Files& files,
+                              const std::function<void()>& compute) {
+        std::vector<std::string> names;
+        for (const auto& [cached, name] : files) names.push_back(name);
+        if (!options_.force && stamps_.current(stage, key)) return StageOutcome::UpToDate;
+        stamps_.remove(stage);
+        std::optional<FileLock> lock;
+        if (cache_.enabled()) {
+            lock.emplace(cache_.lock_path(stage, key));
+            if (!options_.force && cache_.fetch(stage, key, dir_.string(), files)) {
+                stamps_.write(stage, key, names);
+                return StageOutcome::FromCache;
+            }
+        }
+        compute();
+        cache_.store(stage, key, dir_.string(), files);
+        stamps_.write(stage, key, names);
+        return StageOutcome::Ran;
+    }
+
+    const std::string& model_hash() {
+        if (model_hash_.empty()) model_hash_ = file_hash(file(".model"));
+        return model_hash_;
+    }
+    const Model& model() {
+        if (!model_) model_ = load_model(file(".model"));
+        return *model_;
+    }
+
+    // ---- simulate
+    json simulate_inputs() {
+        json colliders = json::array();
+        for (const ColliderSettings& c : shot_.scene.colliders)
+            if (c.shape.kind == ShapeKind::Mesh) colliders.push_back(file_hash(c.shape.mesh));
+        return {{"model", model_hash()},       {"scene", to_json(shot_.scene)},       {"collider_meshes", colliders},
+                {"object", to_json(shot_.object)}, {"material", to_json(shot_.material)}, {"simulate", to_json(shot_.simulate)}};
+    }
+    void simulate_stage() {
+        StageReport& r = report(Stage::Simulate);
+        if (!asked(Stage::Simulate) && !needed_later(Stage::Simulate)) return;
+        const auto start = std::chrono::steady_clock::now();
+        const std::string key = stage_key("simulate", simulate_inputs());
+        const StageCache::Files files = {{"traj", name_ + ".traj"},
+                                         {"breaks.jsonl", name_ + ".breaks.jsonl"},
+                                         {"energy.csv", name_ + ".energy.csv"}};
+        if (!asked(Stage::Simulate)) {
+            if (!stamps_.current("simulate", key)) missing(Stage::Simulate, "the trajectory");
+            return;
+        }
+        r.outcome = cached_stage("simulate", key, files, [&] {
+            const SimulationInput input{shot_.scene, shot_.object, shot_.material, shot_.simulate};
+            const SimulationResult sim = simulate(model(), input, model_hash());
+            save_trajectory(file(".traj"), sim.trajectory);
+            write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
+            write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
+            spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke", sim.trajectory.frames(), sim.steps,
+                         sim.breaks.size(), model().constraints.size());
+        });
+        r.seconds = seconds_since(start);
+        log_outcome(r);
+        if (!trajectory().complete) {
+            spdlog::error("simulate: the simulation stopped early (see {}); the frames before are kept, marked "
+                          "incomplete", file(".traj"));
+            if (result_.exit_code == 0) result_.exit_code = static_cast<int>(ExitCode::Unstable);
+        }
+    }
+
+    const std::string& trajectory_hash() {
+        if (trajectory_hash_.empty()) trajectory_hash_ = file_hash(file(".traj"));
+        return trajectory_hash_;
+    }
+    const Trajectory& trajectory() {
+        if (!trajectory_) trajectory_ = load_trajectory(file(".traj"));
+        return *trajectory_;
+    }
+
+    // ---- render
+    const std::string& render_key() {
+        if (render_key_.empty())
+            render_key_ = stage_key("render", {{"model", model_hash()}, {"trajectory", trajectory_hash()},
+                                               {"render", to_json(shot_.render)}});
+        return render_key_;
+    }
+    bool all_frames_present() {
+        std::error_code ec;
+        for (uint32_t f = 0; f < trajectory().frames(); ++f)
+            if (!fs::exists(fs::path(frames_dir()) / frame_file_name(f), ec)) return false;
+        return true;
+    }
+    // The frames folder holds frames of one render key (frames/.key); frames of another are removed.
+    void prepare_frames_dir() {
+        FileLock lock((dir_ / ".shatter" / "render.lock").string());
+        const fs::path key_file = fs::path(frames_dir()) / ".key";
+        std::error_code ec;
+        std::string current;
+        if (fs::exists(key_file, ec)) current = read_file(key_file.string(), "frames key");
+        if (current == render_key() + "\n" && !options_.force) return;
+        make_directories(frames_dir());
+        for (const auto& entry : fs::directory_iterator(frames_dir(), ec))
+            if (entry.path().filename().string().rfind("frame_", 0) == 0) fs::remove(entry.path(), ec);
+        write_file_atomic(key_file.string(), render_key() + "\n");
+    }
+    void render_stage() {
+        StageReport& r = report(Stage::Render);
+        if (!asked(Stage::Render) && !needed_later(Stage::Render)) return;
+        const auto start = std::chrono::steady_clock::now();
+        const std::string& key = render_key();
+        const bool current = stamps_.current("render", key) && all_frames_present();
+        if (!asked(Stage::Render)) {
+            if (!current) missing(Stage::Render, "the frames");
+            return;
+        }
+        if (current && !options_.force) {
+            r.outcome = StageOutcome::UpToDate;
+        } else {
+            stamps_.remove("render");
+            prepare_frames_dir();
+            const Model& m = model();
+            const RenderScene scene = make_render_scene(m, file(".model"), trajectory(), file(".traj"));
+            RenderOptions ro;
+            ro.progress = options_.progress;
+            ro.skip_existing = true;
+            ro.size_source = options_.shot + ": [render] width, height";
+            const FrameRange range = chunk_range(trajectory().frames(), options_.chunk, options_.chunks);
+            if (range.first < range.end) {
+                const RenderReport rr = render_frames(scene, shot_.render, range, frames_dir(), ro);
+                spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first,
+                             range.end - 1, range.end - range.first - rr.frames);
+            }
+            if (all_frames_present()) stamps_.write("render", key, {});
+            r.outcome = StageOutcome::Ran;
+        }
+        r.seconds = seconds_since(start);
+        log_outcome(r);
+    }
+
+    // ---- encode, sheet, plot, export: each needs the frames or the simulation; a failure is
+    // reported and the others still run.
+    void finishing_stage(Stage s, const std::vector<std::string>& outputs, const std::function<json()>& inputs,
+                         const std::function<void()>& make) {
+        StageReport& r = report(s);
+        if (!asked(s)) return;
+        const auto start = std::chrono::steady_clock::now();
+        try {
+            if (s == Stage::Encode || s == Stage::Sheet) {
+                if (!(stamps_.current("render", render_key()) && all_frames_present())) missing(Stage::Render, "the frames");
+            }
+            const std::string key = stage_key(to_string(s), inputs());
+            if (!options_.force && stamps_.current(to_string(s), key)) {
+                r.outcome = StageOutcome::UpToDate;
+            } else {
+                stamps_.remove(to_string(s));
+                make();
+                stamps_.write(to_string(s), key, outputs);
+                r.outcome = StageOutcome::Ran;
+            }
+        } catch (const Error& e) {
+            r.outcome = StageOutcome::Failed;
+            r.error = e.what();
+            spdlog::error("{}: {}", to_string(s), e.what());
+            if (result_.exit_code == 0) result_.exit_code = static_cast<int>(e.code());
+        }
+        r.seconds = seconds_since(start);
+        log_outcome(r);
+    }
+
+    // summary.json: what the run made, deterministic (no times; those are in run.log).
+    void write_summary() {
+        std::error_code ec;
+        if (!fs::exists(file(".model"), ec) || !fs::exists(file(".traj"), ec) ||
+            !stamps_.current("simulate", stage_key("simulate", simulate_inputs())))
+            return;
+        const Model& m = model();
+        size_t parts = 0;
+        for (const Piece& p : m.pieces) parts += p.collision.size();
+        json s;
+        s["shot"] = options_.shot;
+        s["overrides"] = options_.overrides;
+        s["model"] = {{"pieces", m.pieces.size()},
+                      {"constraints", m.constraints.size()},
+                      {"tets", m.mesh.tets.size()},
+                      {"collision_parts", parts}};
+        s["alpha"] = shot_.material.alpha;
+        s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
+                                           read_file(file(".energy.csv"), "energy series"));
+        json files = json::object();
+        for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".mp4",
+                                   ".contact.png", ".energy.png", ".glb"})
+            if (fs::exists(file(suffix), ec)) files[std::string(suffix).substr(1)] = name_ + suffix;
+        if (all_frames_present()) files["frames"] = "frames/frame_%05d.png";
+        s["files"] = files;
+        write_file_atomic((dir_ / "summary.json").string(), s.dump(2) + "\n");
+        result_.summary = std::move(s);
+    }
+
+    const RunOptions& options_;
+    Shot shot_;
+    fs::path dir_;
+    std::string name_;
+    StageStamps stamps_;
+    StageCache cache_;
+    RunResult result_;
+    std::string model_hash_, trajectory_hash_, render_key_;
+    std::optional<Model> model_;
+    std::optional<Trajectory> trajectory_;
+};
+
+}  // namespace
+
+RunResult run_shot(const RunOptions& options) { return Runner(options).run(); }
+
+std::vector<Stage> up_to_date_stages(const RunOptions& options) { return Runner(options).up_to_date(); }
+
+std::string format_run_summary(const RunResult& r) {
+    std::string out;
+    double total = 0;
+    std::string times;
+    for (const StageReport& s : r.stages) {
+        if (s.outcome == StageOutcome::NotAsked) continue;
+        total += s.seconds;
+        times += fmt::format("{}{} {:.2f}s{}", times.empty() ? "" : ", ", to_string(s.stage), s.seconds,
+                             s.outcome == StageOutcome::Ran ? "" : fmt::format(" ({})", to_string(s.outcome)));
+    }
+    out += fmt::format("stages:   {} (total {:.2f}s)\n", times, total);
+    if (!r.summary.empty()) {
+        const json& m = r.summary["model"];
+        const json& sim = r.summary["simulation"];
+        out += fmt::format("model:    {} pieces, {} constraints, {} tets, {} collision parts\n", m["pieces"].get<size_t>(),
+                           m["constraints"].get<size_t>(), m["tets"].get<size_t>(), m["collision_parts"].get<size_t>());
+        out += fmt::format("fracture: {} breaks -> {} fragments; {:.4g} J stored at the breaks, {:.4g} J injected "
+                           "(alpha {:g}); peak piece speed {:.3g} m/s{}\n",
+                           sim["breaks"].get<size_t>(), sim["fragments"].get<size_t>(), sim["stored_energy_J"].get<double>(),
+                           sim["injected_energy_J"].get<double>(), r.summary["alpha"].get<double>(),
+                           sim["peak_piece_speed_m_per_s"].get<double>(),
+                           sim["complete"].get<bool>() ? "" : " (INCOMPLETE: the simulation went unstable)");
+    }
+    out += fmt::format("results:  {}/\n", r.output_dir);
+    if (!r.summary.empty())
+        for (const auto& [what, name] : r.summary["files"].items())
+            out += fmt::format("  {:<12} {}/{}\n", what, r.output_dir, name.get<std::string>());
+    for (const StageReport& s : r.stages)
+        if (s.outcome == StageOutcome::Failed) out += fmt::format("FAILED:   {}: {}\n", to_string(s.stage), s.error);
+    return out;
+}
+
+}  // namespace shatter

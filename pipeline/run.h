@@ -1,0 +1,76 @@
+// `shatter run SHOT`: one shot from mesh to movie, into one output folder.
+//
+//   prescore ─► simulate ─► render ─► encode (MP4) ─► sheet (contact sheet) ─► plot (energy PNG)
+//                                                  ─► export (.glb) ─► summary.json
+//
+// Every stage is stamped with a key over what it read (pipeline/stage_cache.h): a re-run skips
+// the stages that are up to date, a killed run resumes where it stopped (frames one by one), and
+// the final bytes do not depend on how often the run was interrupted. The output folder:
+//
+//   NAME.model  NAME.pieces.ply  NAME.traj  NAME.breaks.jsonl  NAME.energy.csv  frames/
+//   NAME.mp4  NAME.contact.png  NAME.energy.png  NAME.glb  summary.json  run.log  .shatter/
+//
+// NAME is the shot file's stem.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace shatter {
+
+enum class Stage : uint8_t { Prescore, Simulate, Render, Encode, Sheet, Plot, Export };
+inline constexpr Stage kAllStages[] = {Stage::Prescore, Stage::Simulate, Stage::Render, Stage::Encode,
+                                       Stage::Sheet,    Stage::Plot,     Stage::Export};
+const char* to_string(Stage stage);
+std::optional<Stage> parse_stage(const std::string& text);
+
+struct RunOptions {
+    std::string shot;                    // the shot file (.toml)
+    std::vector<std::string> overrides;  // SECTION.KEY=VALUE (core/shot.h)
+    std::string output_dir;              // "" = out/NAME
+    std::string cache_dir;               // shared stage cache of prescore and simulate ("" = none)
+    std::vector<Stage> stages;           // the stages to run, in pipeline order; empty = all
+    uint32_t chunk = 0, chunks = 1;      // render only chunk `chunk` (from 0) of `chunks` equal frame ranges
+    bool force = false;                  // run stages even when they are up to date
+    bool progress = true;                // progress bars on stderr
+};
+
+enum class StageOutcome : uint8_t { Ran, UpToDate, FromCache, NotAsked, Failed };
+const char* to_string(StageOutcome outcome);
+
+struct StageReport {
+    Stage stage;
+    StageOutcome outcome = StageOutcome::NotAsked;
+    double seconds = 0;   // wall time (unit: s)
+    std::string error;    // when it failed
+};
+
+struct RunResult {
+    std::string output_dir;
+    std::string name;                   // NAME of the files
+    std::vector<StageReport> stages;    // in pipeline order
+    nlohmann::ordered_json summary;     // what summary.json holds (empty until simulate has run)
+    int exit_code = 0;                  // 0, or the exit code of the first failure (core/error.h)
+};
+
+// out/NAME for a shot file path.
+std::string default_output_dir(const std::string& shot);
+
+// Runs the asked stages. Bad input to the first stages (shot, mesh) throws Error before any output
+// is touched; a failing finishing stage (encode, sheet, plot, export) is reported in the result
+// and the others still run.
+RunResult run_shot(const RunOptions& options);
+
+// The stages whose outputs in the output folder are up to date for this shot and these overrides
+// (prescore, simulate, render: their stamps match and, for render, every frame is there), without
+// running or writing anything. Bad input throws as run_shot does. For `shatter submit`.
+std::vector<Stage> up_to_date_stages(const RunOptions& options);
+
+// The closing summary printed at the end: time per stage, pieces, breaks, energy, files.
+std::string format_run_summary(const RunResult& result);
+
+}  // namespace shatter

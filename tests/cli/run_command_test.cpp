@@ -1,0 +1,249 @@
+// `shatter run` driven like a user drives it: every output in one folder, stages skipped when up
+// to date and re-run when their inputs change, and a run killed at any moment that resumes to the
+// same bytes as an uninterrupted one.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <thread>
+
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::run_shatter;
+using testing_support::slurp;
+using testing_support::TempDir;
+
+// A 10 cm cube in 4 pieces dropped from 0.5 m: 16 frames of 160x90, a couple of seconds in all.
+const char* kCubeShot = R"([mesh]
+path = "cube.obj"
+scale = 0.1
+[prescore]
+pieces = 4
+resolution = 5
+density = 1000
+[object]
+position = [0, 0.5, 0]
+[material]
+stiffness = 1e12
+strength = 2e3
+[simulate]
+duration = 0.5
+[render]
+width = 160
+height = 90
+shadow_map = 512
+)";
+
+std::string write_cube_shot(const TempDir& dir) {
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
+    return dir.write("cube.toml", kCubeShot);
+}
+
+int run_command_status(const std::vector<std::string>& args) { return testing_support::run_command(args).exit_code; }
+
+// Every file of an output folder (recursively) and its bytes, except the log, which has times.
+std::map<std::string, std::string> folder_bytes(const std::string& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file()) continue;
+        const std::string rel = fs::relative(e.path(), dir).string();
+        if (rel == "run.log") continue;
+        out[rel] = slurp(e.path().string());
+    }
+    return out;
+}
+
+// What the closing summary's "stages:" line says of one stage: "render 0.31s" when it ran,
+// "render 0.00s (up to date)" when it was skipped.
+std::string stage_status(const std::string& out, const std::string& stage) {
+    const size_t line = out.find("stages:");
+    if (line == std::string::npos) return "";
+    const size_t at = out.find(" " + stage + " ", line);
+    if (at == std::string::npos) return "";
+    const size_t end = std::min(out.find(',', at), out.find(" (total", at));
+    return out.substr(at + 1, end - at - 1);
+}
+
+TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string out = dir.file("out");
+    auto r = run_shatter({"run", shot, "-o", out, "--no-progress"});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    for (const char* f : {"cube.model", "cube.pieces.ply", "cube.traj", "cube.breaks.jsonl", "cube.energy.csv",
+                          "cube.mp4", "cube.contact.png", "cube.energy.png", "cube.glb", "summary.json", "run.log",
+                          "frames/frame_00000.png", "frames/frame_00015.png"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+    EXPECT_FALSE(fs::exists(fs::path(out) / "frames/frame_00016.png"));  // 0.5 s at 30 fps: 16 frames
+    EXPECT_NE(r.out.find("stages:"), std::string::npos);
+    EXPECT_NE(r.out.find("results:"), std::string::npos);
+    const std::string log = slurp(out + "/run.log");
+    EXPECT_NE(log.find("simulate: ran"), std::string::npos) << log;
+
+    const auto before = folder_bytes(out);
+    auto again = run_shatter({"run", shot, "-o", out, "--no-progress"});
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    for (const char* stage : {"prescore", "simulate", "render", "encode", "sheet", "plot", "export"})
+        EXPECT_NE(stage_status(again.out, stage).find("(up to date)"), std::string::npos) << stage << "\n" << again.out;
+    EXPECT_EQ(folder_bytes(out), before);
+}
+
+TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string out = dir.file("out");
+    ASSERT_EQ(run_shatter({"run", shot, "-o", out, "--no-progress"}).exit_code, 0);
+    auto r = run_shatter({"run", shot, "-o", out, "--no-progress", "--set", "material.alpha=0"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(stage_status(r.out, "prescore").find("(up to date)"), std::string::npos) << r.out;
+    for (const char* stage : {"simulate", "render", "encode", "sheet", "plot", "export"}) {
+        const std::string status = stage_status(r.out, stage);
+        EXPECT_FALSE(status.empty()) << stage << "\n" << r.out;
+        EXPECT_EQ(status.find("("), std::string::npos) << stage << " should have run: " << status;
+    }
+    EXPECT_NE(slurp(out + "/summary.json").find("\"alpha\": 0.0"), std::string::npos);
+}
+
+TEST(RunCommand, BadOverridesAndStagesAreRefusedBeforeAnythingIsWritten) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    auto r = run_shatter({"run", shot, "-o", dir.file("out"), "--set", "material.alpha=-2"});
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("--set material.alpha=-2"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("out")));
+    r = run_shatter({"run", shot, "-o", dir.file("out"), "--stages", "render,movie"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("'movie' is not a stage"), std::string::npos) << r.err;
+    r = run_shatter({"run", shot, "-o", dir.file("out"), "--stages", "render"});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("missing or out of date"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--stages prescore"), std::string::npos) << r.err;
+    r = run_shatter({"run", dir.file("nope.toml")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("nope.toml"), std::string::npos) << r.err;
+}
+
+// Starts `shatter run`, waits until `ready` holds (or the run ends), and kills it with SIGKILL.
+// Returns true when the kill landed before the run ended.
+bool kill_when(const std::vector<std::string>& args, const std::function<bool()>& ready) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, 1);
+        ::dup2(null, 2);
+        std::vector<char*> argv;
+        std::string exe = SHATTER_BINARY;
+        argv.push_back(exe.data());
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    for (;;) {
+        if (::waitpid(pid, &status, WNOHANG) == pid) return false;  // ended before the moment came
+        if (ready()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    return WIFSIGNALED(status);
+}
+
+TEST(RunCommand, KilledAtAnyMomentAndRunAgainItEndsWithTheSameBytes) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string reference = dir.file("reference");
+    ASSERT_EQ(run_shatter({"run", shot, "-o", reference, "--no-progress"}).exit_code, 0);
+    const auto expected = folder_bytes(reference);
+
+    const auto started = std::chrono::steady_clock::now();
+    struct Moment {
+        const char* name;
+        std::function<bool(const std::string&)> ready;
+    };
+    const std::vector<Moment> moments = {
+        {"during prescore", [&](const std::string&) { return std::chrono::steady_clock::now() - started > std::chrono::milliseconds(0); }},
+        {"during simulate", [](const std::string& out) { return fs::exists(out + "/cube.model"); }},
+        {"during render", [](const std::string& out) { return fs::exists(out + "/frames/frame_00004.png"); }},
+        {"before encode", [](const std::string& out) { return fs::exists(out + "/frames/frame_00015.png"); }},
+        {"during the finishing stages", [](const std::string& out) { return fs::exists(out + "/cube.mp4"); }},
+    };
+    int landed = 0;
+    for (const Moment& m : moments) {
+        const std::string out = dir.file(std::string("killed ") + m.name);
+        landed += kill_when({"run", shot, "-o", out, "--no-progress"}, [&] { return m.ready(out); });
+        auto r = run_shatter({"run", shot, "-o", out, "--no-progress"});
+        ASSERT_EQ(r.exit_code, 0) << m.name << ": " << r.err;
+        const auto got = folder_bytes(out);
+        for (const auto& [name, bytes] : got) EXPECT_TRUE(expected.count(name)) << m.name << ": extra file " << name;
+        for (const auto& [name, bytes] : expected) {
+            auto it = got.find(name);
+            ASSERT_NE(it, got.end()) << m.name << ": " << name << " missing";
+            EXPECT_TRUE(it->second == bytes) << m.name << ": " << name << " differs";
+        }
+    }
+    EXPECT_GE(landed, 3) << "most kills should land while the run is still going";
+}
+
+
+// A disk that fills while frames are written: a clear message naming the file and the reason, the
+// Io exit code, and the finished stages intact (their stamps still verify, so a run on a roomier
+// disk would only redo the frames).
+TEST(RunCommand, AFullDiskFailsClearlyAndKeepsWhatWasFinished) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string disk = dir.file("small disk");
+    fs::create_directories(disk);
+    if (::geteuid() != 0 || run_command_status({"/bin/mount", "-t", "tmpfs", "-o", "size=120k", "tmpfs", disk}) != 0)
+        GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+    const std::string out = disk + "/out";
+    auto r = run_shatter({"run", shot, "-o", out, "--no-progress", "--set", "render.width=480", "--set", "render.height=270"});
+    const std::string model = slurp(out + "/cube.model");
+    const bool simulated = fs::exists(out + "/.shatter/simulate.json");
+    run_command_status({"/bin/umount", disk});
+    EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(".png"), std::string::npos) << r.err;
+    EXPECT_FALSE(model.empty());
+    EXPECT_TRUE(simulated);
+    auto reference = run_shatter({"run", shot, "-o", dir.file("roomy"), "--no-progress", "--stages", "prescore"});
+    ASSERT_EQ(reference.exit_code, 0) << reference.err;
+    EXPECT_TRUE(model == slurp(dir.file("roomy/cube.model")));
+}
+
+TEST(RunCommand, AReadOnlyOutputFolderFailsClearly) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string out = dir.file("locked");
+    fs::create_directories(out);
+    fs::permissions(out, fs::perms::owner_read | fs::perms::owner_exec);
+    if (::geteuid() == 0) {
+        // root writes anywhere; a read-only bind mount stands in for a read-only disk
+        if (run_command_status({"/bin/mount", "--bind", "-o", "ro", out, out}) != 0 &&
+            run_command_status({"/bin/mount", "-o", "remount,ro,bind", out}) != 0)
+            GTEST_SKIP() << "cannot make a read-only mount here";
+        run_command_status({"/bin/mount", "-o", "remount,ro,bind", out});
+    }
+    auto r = run_shatter({"run", shot, "-o", out, "--no-progress"});
+    if (::geteuid() == 0) run_command_status({"/bin/umount", out});
+    fs::permissions(out, fs::perms::owner_all);
+    EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+    EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Read-only file system") == std::string::npos ? r.err.find("Permission denied") : 0,
+              std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace shatter

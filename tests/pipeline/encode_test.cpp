@@ -1,0 +1,177 @@
+// MP4 encoding: an H.264 yuv420p file with every frame at the (even) frame size, the same bytes
+// from two encodes, grey levels that survive the trip (limited range, no level shift), hostile directory names, and clean
+// failures (no temporary file left) for missing frames, broken frames and a missing ffmpeg.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "pipeline/encode.h"
+#include "pipeline/process.h"
+#include "render/png_io.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::TempDir;
+
+// Frame i: a grey level 40 + 10 i on the left half, a moving bright bar on the right.
+void write_frames(const fs::path& dir, uint32_t count, uint32_t w, uint32_t h) {
+    fs::create_directories(dir);
+    for (uint32_t i = 0; i < count; ++i) {
+        Image img(w, h);
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x) {
+                uint8_t* p = img.pixel(x, y);
+                const bool bar = x >= w / 2 && (x + i) % 16 < 4;
+                const uint8_t v = x < w / 2 ? uint8_t(40 + 10 * i) : bar ? 230 : 20;
+                p[0] = p[1] = p[2] = v;
+            }
+        save_png((dir / fmt::format("frame_{:05d}.png", i)).string(), img);
+    }
+}
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::map<std::string, std::string> probe(const fs::path& mp4) {
+    const ProcessResult r = run_process({"ffprobe", "-v", "error", "-select_streams", "v:0", "-count_frames",
+                                         "-show_entries", "stream=codec_name,pix_fmt,width,height,nb_read_frames",
+                                         "-of", "default=noprint_wrappers=1", mp4.string()});
+    EXPECT_TRUE(r.ok()) << r.err;
+    std::map<std::string, std::string> out;
+    size_t begin = 0;
+    while (begin < r.out.size()) {
+        size_t end = r.out.find('\n', begin);
+        if (end == std::string::npos) end = r.out.size();
+        const std::string line = r.out.substr(begin, end - begin);
+        if (auto eq = line.find('='); eq != std::string::npos) out[line.substr(0, eq)] = line.substr(eq + 1);
+        begin = end + 1;
+    }
+    return out;
+}
+
+class ScopedPath {
+public:
+    explicit ScopedPath(const std::string& value) : old_(getenv("PATH") ? getenv("PATH") : "") { setenv("PATH", value.c_str(), 1); }
+    ~ScopedPath() { setenv("PATH", old_.c_str(), 1); }
+
+private:
+    std::string old_;
+};
+
+TEST(Encode, Mp4IsH264Yuv420pWithEveryFrameAndOddSizesPaddedToEven) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 12, 63, 47);
+    const fs::path mp4 = tmp.path() / "out.mp4";
+    encode_mp4((tmp.path() / "frames").string(), 12, 24.0, mp4.string());
+    auto info = probe(mp4);
+    EXPECT_EQ(info["codec_name"], "h264");
+    EXPECT_EQ(info["pix_fmt"], "yuv420p");
+    EXPECT_EQ(info["width"], "64");
+    EXPECT_EQ(info["height"], "48");
+    EXPECT_EQ(info["nb_read_frames"], "12");
+    EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"frames", "out.mp4"}));  // no temporary left
+}
+
+TEST(Encode, TwoEncodesAreByteIdenticalAndGreyLevelsSurvive) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 6, 64, 48);
+    encode_mp4((tmp.path() / "frames").string(), 6, 30.0, tmp.file("a.mp4"));
+    encode_mp4((tmp.path() / "frames").string(), 6, 30.0, tmp.file("b.mp4"));
+    const std::string a = slurp(tmp.file("a.mp4"));
+    EXPECT_GT(a.size(), 1000u);
+    EXPECT_EQ(a, slurp(tmp.file("b.mp4")));
+    // Decode frame 5 back to 8-bit grey (raw bytes on stdout: a PNG would carry the stream's
+    // transfer function as gAMA and be re-gamma'd by the reader); its flat left half was 40 + 10 * 5.
+    const ProcessResult r = run_process({"ffmpeg", "-nostdin", "-loglevel", "error", "-i", tmp.file("a.mp4"), "-vf",
+                                         "select=eq(n\\,5)", "-frames:v", "1", "-f", "rawvideo", "-pix_fmt", "gray", "-"});
+    ASSERT_TRUE(r.ok()) << r.err;
+    ASSERT_EQ(r.out.size(), 64u * 48u);
+    for (uint32_t y : {4u, 24u, 44u})
+        for (uint32_t x : {2u, 12u, 28u}) EXPECT_NEAR(int(uint8_t(r.out[y * 64 + x])), 90, 2) << x << "," << y;
+}
+
+TEST(Encode, HostileDirectoryAndFileNamesWork) {
+    TempDir tmp;
+    const fs::path dir = tmp.path() / "frames 100% 'q' \"d\" $(touch x) `y`;\nz";
+    write_frames(dir, 4, 32, 32);
+    const fs::path mp4 = dir / "out put %d 'it' $(x):1.mp4";
+    encode_mp4(dir.string(), 4, 30.0, mp4.string());
+    EXPECT_EQ(probe(mp4)["nb_read_frames"], "4");
+    EXPECT_FALSE(fs::exists(tmp.path() / "x"));
+    EXPECT_FALSE(fs::exists(dir / "x"));
+}
+
+TEST(Encode, MissingFramesAreBadInputAndLeaveNoTemporary) {
+    TempDir tmp;
+    try {
+        encode_mp4(tmp.file("no-frames"), 10, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("no-frames"), std::string::npos);
+    }
+    write_frames(tmp.path() / "frames", 3, 16, 16);
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 4, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("frame_00003.png"), std::string::npos);
+    }
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
+}
+
+TEST(Encode, FramesFfmpegCannotDecodeAreAToolErrorWithItsOutput) {
+    TempDir tmp;
+    fs::create_directories(tmp.path() / "frames");
+    for (int i = 0; i < 3; ++i) tmp.write(fmt::format("frames/frame_{:05d}.png", i), "not a png\n");
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 3, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Tool);
+        const std::string what = e.what();
+        EXPECT_NE(what.find("ffmpeg failed (exit code"), std::string::npos) << what;
+        EXPECT_NE(what.find("(fix: "), std::string::npos);
+    }
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
+}
+
+TEST(Encode, FfmpegMissingFromPathIsAToolErrorNamingTheFix) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 2, 16, 16);
+    ScopedPath path(tmp.path().string());  // a PATH without ffmpeg
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Tool);
+        EXPECT_NE(std::string(e.what()).find("install ffmpeg"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
+}
+
+TEST(Encode, UnwritableOutputIsAnIoError) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 2, 16, 16);
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("no/such/dir/out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Io);
+    }
+}
+
+}  // namespace
+}  // namespace shatter

@@ -1,0 +1,394 @@
+// The .glb export (pipeline/export_glb.h), checked by reading it back with assimp and by the
+// Khronos validator: one node per piece and kinematic body, one animation channel per node with
+// a key at every frame at time frame / fps, a known pose that comes back within 1e-5, vertices
+// about each piece's centre of mass in metres (+Y up, no conversion), the palette colours, the
+// same bytes for the same input, and an atomic write that leaves no temporary behind.
+//
+// The validator test needs node and the npm package gltf-validator, which
+// scripts/install-node-tools.sh installs into BUILD/node_modules (`make test` calls it); it is
+// skipped, saying why, when either is missing. SHATTER_NODE_MODULES overrides the location.
+#include <gtest/gtest.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/palette.h"
+#include "core/render_settings.h"
+#include "core/scene_settings.h"
+#include "pipeline/export_glb.h"
+#include "pipeline/process.h"
+#include "render/mesh_builder.h"
+#include "scenes/box_model.h"
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+using namespace testing_support;
+namespace fs = std::filesystem;
+
+constexpr double kFps = 24;  // 1/24 s is not a binary fraction: times must still come back as f / fps
+constexpr uint32_t kFrames = 13;
+const Eigen::Vector3f kKnownPosition(0.25f, 1.5f, -0.75f);  // piece 1 at frame 7
+const Eigen::Quaternionf kKnownRotation(Eigen::AngleAxisf(2.5f, Eigen::Vector3f(1, 2, 3).normalized()));
+
+// Three boxes; piece 0 has two fracture triangles and one cavity triangle.
+Model test_model() {
+    BoxModelBuilder b;
+    b.box(Vec3(0, 0.5, 0), Vec3(1, 1, 1));
+    b.box(Vec3(1.0, 0.5, 0), Vec3(1, 1, 1));
+    b.box(Vec3(0.5, 1.25, 0), Vec3(2, 0.5, 0.4));
+    Model m = b.take();
+    m.pieces[0].surface.kinds[2] = m.pieces[0].surface.kinds[3] = FaceKind::Fracture;
+    m.pieces[0].surface.kinds[5] = FaceKind::Cavity;
+    return m;
+}
+
+SceneSettings test_scene() {
+    SceneSettings s;
+    KinematicSettings pusher;
+    pusher.name = "pusher";
+    pusher.shape.kind = ShapeKind::Box;
+    pusher.shape.size = Vec3(0.5, 0.2, 0.3);
+    s.kinematic.push_back(pusher);
+    KinematicSettings ball;  // no name
+    ball.shape.kind = ShapeKind::Sphere;
+    ball.shape.radius = 0.3;
+    ball.colour = {0.8f, 0.1f, 0.1f};
+    s.kinematic.push_back(ball);
+    return s;
+}
+
+// Every body moves and turns a little per frame; piece 1 sits at a known pose at frame 7 and
+// piece 2's quaternion changes sign every other frame (the same rotation).
+Trajectory test_trajectory(const Model& m, uint32_t frames = kFrames, bool with_props = true) {
+    Trajectory t;
+    t.fps = kFps;
+    t.pieces = uint32_t(m.pieces.size());
+    if (with_props) {
+        t.props = 2;
+        nlohmann::ordered_json j;
+        j["scene"] = to_json(test_scene());
+        t.settings_json = j.dump();
+    }
+    for (uint32_t f = 0; f < frames; ++f)
+        for (uint32_t b = 0; b < t.bodies(); ++b) {
+            BodyPose p;
+            const Eigen::Vector3f start = b < t.pieces ? m.pieces[b].mass.center.cast<float>()
+                                                       : Eigen::Vector3f(-2.0f + b, 0.5f, 1.0f);
+            p.position = start + Eigen::Vector3f(0.1f * b, -0.05f * f, 0.02f * f);
+            p.rotation = Eigen::AngleAxisf(0.1f * f * (b + 1), Eigen::Vector3f(b % 3 == 0, b % 3 == 1, 1).normalized());
+            if (b == 2 && f % 2 == 1) p.rotation.coeffs() = -p.rotation.coeffs();
+            if (b == 1 && f == 7) {
+                p.position = kKnownPosition;
+                p.rotation = kKnownRotation;
+            }
+            t.poses.push_back(p);
+        }
+    return t;
+}
+
+struct Imported {
+    Assimp::Importer importer;
+    const aiScene* scene = nullptr;
+    explicit Imported(const std::string& path) {
+        scene = importer.ReadFile(path, 0);
+        if (!scene) ADD_FAILURE() << "assimp cannot read " << path << ": " << importer.GetErrorString();
+    }
+    const aiNode* node(const std::string& name) const { return scene->mRootNode->FindNode(name.c_str()); }
+    const aiNodeAnim* channel(const std::string& name) const {
+        const aiAnimation* a = scene->mAnimations[0];
+        for (unsigned i = 0; i < a->mNumChannels; ++i)
+            if (name == a->mChannels[i]->mNodeName.C_Str()) return a->mChannels[i];
+        return nullptr;
+    }
+    Colour base_colour(const aiMesh* mesh) const {
+        aiColor4D c;
+        EXPECT_EQ(scene->mMaterials[mesh->mMaterialIndex]->Get(AI_MATKEY_BASE_COLOR, c), AI_SUCCESS);
+        return {c.r, c.g, c.b};
+    }
+};
+
+// q and -q are the same rotation.
+void expect_same_rotation(const aiQuaternion& got, const Eigen::Quaternionf& want, double tol) {
+    const double sign = got.w * want.w() + got.x * want.x() + got.y * want.y() + got.z * want.z() < 0 ? -1 : 1;
+    EXPECT_NEAR(sign * got.w, want.w(), tol);
+    EXPECT_NEAR(sign * got.x, want.x(), tol);
+    EXPECT_NEAR(sign * got.y, want.y(), tol);
+    EXPECT_NEAR(sign * got.z, want.z(), tol);
+}
+
+TEST(GlbExport, HasANodePerBodyAMeshPerFaceKindAndAKeyPerFrameAtFrameOverFps) {
+    TempDir dir;
+    const Model m = test_model();
+    export_glb(m, test_trajectory(m), dir.file("a.glb"));
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    const std::vector<std::string> names = {"piece_0", "piece_1", "piece_2", "prop_0_pusher", "prop_1"};
+    ASSERT_EQ(g.scene->mRootNode->mNumChildren, names.size());
+    for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(g.scene->mRootNode->mChildren[i]->mName.C_Str(), names[i]);
+    EXPECT_EQ(g.node("piece_0")->mNumMeshes, 3u);  // outer, fracture, cavity
+    for (const char* n : {"piece_1", "piece_2", "prop_0_pusher", "prop_1"}) EXPECT_EQ(g.node(n)->mNumMeshes, 1u) << n;
+    EXPECT_EQ(g.scene->mNumMeshes, 7u);
+
+    ASSERT_EQ(g.scene->mNumAnimations, 1u);
+    const aiAnimation* anim = g.scene->mAnimations[0];
+    ASSERT_EQ(anim->mNumChannels, names.size());
+    ASSERT_GT(anim->mTicksPerSecond, 0);
+    for (const std::string& n : names) {
+        const aiNodeAnim* ch = g.channel(n);
+        ASSERT_TRUE(ch) << n;
+        ASSERT_EQ(ch->mNumPositionKeys, kFrames) << n;
+        ASSERT_EQ(ch->mNumRotationKeys, kFrames) << n;
+        // No scale channel; assimp's importer turns a rest scale (written when the exporter's
+        // decomposition of the rest pose gives 1 +- 1e-7) into one constant key.
+        ASSERT_LE(ch->mNumScalingKeys, 1u) << n;
+        for (unsigned k = 0; k < ch->mNumScalingKeys; ++k)
+            for (int i = 0; i < 3; ++i) EXPECT_NEAR(ch->mScalingKeys[k].mValue[i], 1.0, 1e-5) << n;
+        for (uint32_t f = 0; f < kFrames; ++f) {
+            EXPECT_NEAR(ch->mPositionKeys[f].mTime / anim->mTicksPerSecond, f / kFps, 1e-6) << n << " frame " << f;
+            EXPECT_NEAR(ch->mRotationKeys[f].mTime / anim->mTicksPerSecond, f / kFps, 1e-6) << n << " frame " << f;
+        }
+    }
+    EXPECT_NEAR(anim->mDuration / anim->mTicksPerSecond, (kFrames - 1) / kFps, 1e-6);
+}
+
+TEST(GlbExport, AKnownPoseComesBackWithin1e5AndTheRestPoseIsFrameZero) {
+    TempDir dir;
+    const Model m = test_model();
+    const Trajectory t = test_trajectory(m);
+    export_glb(m, t, dir.file("a.glb"));
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    const aiNodeAnim* ch = g.channel("piece_1");
+    ASSERT_TRUE(ch);
+    const aiVector3D p = ch->mPositionKeys[7].mValue;
+    EXPECT_NEAR(p.x, kKnownPosition.x(), 1e-5);
+    EXPECT_NEAR(p.y, kKnownPosition.y(), 1e-5);
+    EXPECT_NEAR(p.z, kKnownPosition.z(), 1e-5);
+    expect_same_rotation(ch->mRotationKeys[7].mValue, kKnownRotation, 1e-5);
+
+    // Every key of every body, and each node's rest transform = its pose at frame 0.
+    for (uint32_t b = 0; b < t.bodies(); ++b) {
+        const std::string name = g.scene->mRootNode->mChildren[b]->mName.C_Str();
+        const aiNodeAnim* c = g.channel(name);
+        for (uint32_t f = 0; f < kFrames; ++f) {
+            const BodyPose& want = t.pose(f, b);
+            for (int i = 0; i < 3; ++i) EXPECT_NEAR(c->mPositionKeys[f].mValue[i], want.position[i], 1e-5);
+            expect_same_rotation(c->mRotationKeys[f].mValue, want.rotation, 1e-5);
+        }
+        aiVector3D scale, position;
+        aiQuaternion rotation;
+        g.node(name)->mTransformation.Decompose(scale, rotation, position);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(position[i], t.pose(0, b).position[i], 1e-5) << name;
+            EXPECT_NEAR(scale[i], 1.0, 1e-5) << name;
+        }
+        expect_same_rotation(rotation, t.pose(0, b).rotation, 1e-5);
+    }
+}
+
+TEST(GlbExport, RotationKeysStayOnOneHemisphereSoInterpolationTurnsTheShortWay) {
+    TempDir dir;
+    const Model m = test_model();
+    export_glb(m, test_trajectory(m), dir.file("a.glb"));  // piece 2 flips sign every other frame
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    const aiNodeAnim* ch = g.channel("piece_2");
+    ASSERT_TRUE(ch);
+    for (uint32_t f = 1; f < kFrames; ++f) {
+        const aiQuaternion& a = ch->mRotationKeys[f - 1].mValue;
+        const aiQuaternion& b = ch->mRotationKeys[f].mValue;
+        EXPECT_GT(a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z, 0.9) << "frame " << f;
+    }
+}
+
+TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithPaletteColours) {
+    TempDir dir;
+    const Model m = test_model();
+    export_glb(m, test_trajectory(m), dir.file("a.glb"));
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    // Piece 2 is a 2 x 0.5 x 0.4 m box: its vertices are the corners +-(1, 0.25, 0.2).
+    const aiNode* n = g.node("piece_2");
+    ASSERT_EQ(n->mNumMeshes, 1u);
+    const aiMesh* mesh = g.scene->mMeshes[n->mMeshes[0]];
+    EXPECT_EQ(mesh->mNumFaces, 12u);
+    ASSERT_TRUE(mesh->HasNormals());
+    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+        EXPECT_NEAR(std::abs(mesh->mVertices[i].x), 1.0, 1e-6);
+        EXPECT_NEAR(std::abs(mesh->mVertices[i].y), 0.25, 1e-6);
+        EXPECT_NEAR(std::abs(mesh->mVertices[i].z), 0.2, 1e-6);
+        EXPECT_NEAR(mesh->mNormals[i].Length(), 1.0, 1e-6);
+    }
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(mesh)[i], piece_colour(2)[i], 1e-6);
+
+    // Piece 0's fracture and cavity faces have render's shades of its colour.
+    const aiNode* n0 = g.node("piece_0");
+    ASSERT_EQ(n0->mNumMeshes, 3u);
+    const RenderSettings look;
+    const FaceKind kinds[3] = {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity};
+    const unsigned faces[3] = {9, 2, 1};
+    for (int k = 0; k < 3; ++k) {
+        const aiMesh* part = g.scene->mMeshes[n0->mMeshes[k]];
+        EXPECT_EQ(part->mNumFaces, faces[k]) << k;
+        const Colour want = face_colour(piece_colour(0), kinds[k], look);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(part)[i], want[i], 1e-6) << k;
+    }
+    // The sphere prop has its radius and its scene colour.
+    const aiMesh* ball = g.scene->mMeshes[g.node("prop_1")->mMeshes[0]];
+    for (unsigned i = 0; i < ball->mNumVertices; ++i) EXPECT_NEAR(ball->mVertices[i].Length(), 0.3, 1e-6);
+    EXPECT_NEAR(g.base_colour(ball)[0], 0.8, 1e-6);
+}
+
+TEST(GlbExport, SameInputGivesTheSameBytesWhateverTheFileName) {
+    TempDir dir;
+    const Model m = test_model();
+    const Trajectory t = test_trajectory(m);
+    export_glb(m, t, dir.file("a.glb"));
+    export_glb(m, t, dir.file("second name.glb"));
+    const std::string a = slurp(dir.file("a.glb"));
+    EXPECT_GT(a.size(), 1000u);
+    EXPECT_EQ(a.substr(0, 4), "glTF");
+    EXPECT_TRUE(a == slurp(dir.file("second name.glb")));
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.glb", "second name.glb"}));  // no temporaries
+}
+
+TEST(GlbExport, WithoutPropsOnlyPiecesAreExported) {
+    TempDir dir;
+    const Model m = test_model();
+    export_glb(m, test_trajectory(m, 2, false), dir.file("a.glb"));
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    EXPECT_EQ(g.scene->mRootNode->mNumChildren, 3u);
+    EXPECT_EQ(g.scene->mAnimations[0]->mNumChannels, 3u);
+}
+
+TEST(GlbExport, AnUnwritableTargetIsAnIoErrorAndLeavesNoTemporary) {
+    TempDir dir;
+    const Model m = test_model();
+    const Trajectory t = test_trajectory(m);
+    fs::create_directory(dir.file("taken.glb"));  // rename onto a directory fails
+    try {
+        export_glb(m, t, dir.file("taken.glb"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Io);
+        EXPECT_NE(std::string(e.what()).find("taken.glb"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"taken.glb"}));
+    dir.write("file", "x");
+    try {
+        export_glb(m, t, dir.file("file/out.glb"));  // a parent that is not a directory
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Io);
+    }
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"file", "taken.glb"}));
+}
+
+TEST(GlbExport, RefusesATrajectoryOfAnotherModelOrScene) {
+    TempDir dir;
+    const Model m = test_model();
+    Trajectory t = test_trajectory(m);
+    t.pieces = 2;  // same poses, read as 2 pieces + 2 props
+    try {
+        export_glb(m, t, dir.file("a.glb"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("2 pieces but the model has 3"), std::string::npos) << e.what();
+    }
+    Trajectory no_scene = test_trajectory(m);
+    no_scene.settings_json = "{}";  // 2 props, but no scene describing them
+    try {
+        export_glb(m, no_scene, dir.file("a.glb"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("kinematic bodies"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(dir.entries().empty());
+}
+
+// Where scripts/install-node-tools.sh put the validator: $SHATTER_NODE_MODULES, else
+// BUILD/node_modules (BUILD: the build tree of the shatter binary under test), else
+// ~/.cache/shatter/node/node_modules.
+std::optional<std::string> validator_modules() {
+    std::vector<fs::path> candidates;
+    if (const char* env = std::getenv("SHATTER_NODE_MODULES")) candidates.emplace_back(env);
+    candidates.push_back(fs::path(SHATTER_BINARY).parent_path().parent_path() / "node_modules");
+    if (const char* home = std::getenv("HOME")) candidates.push_back(fs::path(home) / ".cache/shatter/node/node_modules");
+    for (const fs::path& c : candidates)
+        if (fs::exists(c / "gltf-validator" / "package.json")) return c.string();
+    return std::nullopt;
+}
+
+TEST(GlbExport, KhronosValidatorReportsNoErrors) {
+    const auto node = find_program("node");
+    if (!node) GTEST_SKIP() << "node is not installed (fix: apt-get install nodejs npm)";
+    const auto modules = validator_modules();
+    if (!modules)
+        GTEST_SKIP() << "the npm package gltf-validator is not installed (fix: bash scripts/install-node-tools.sh "
+                        "BUILD_DIR, or set SHATTER_NODE_MODULES)";
+    TempDir dir;
+    const Model m = test_model();
+    export_glb(m, test_trajectory(m), dir.file("a.glb"));
+    const std::string driver = std::string(SHATTER_SOURCE_DIR) + "/tests/pipeline/validate_gltf.js";
+    const ProcessResult r = run_process({*node, driver, *modules, dir.file("a.glb")});
+    ASSERT_TRUE(r.ok()) << r.describe() << "\n" << r.err;
+    std::istringstream summary(r.out);
+    std::string word;
+    int errors = -1, warnings = -1;
+    summary >> word >> errors >> word >> warnings;
+    EXPECT_EQ(errors, 0) << r.out;
+    std::cout << "gltf-validator: " << r.out.substr(0, r.out.find('\n')) << "\n";
+}
+
+// A 1,000-piece model (10 x 10 x 10 boxes, past the palette's 36-colour cycle): every node and
+// key is there. Few frames: assimp's exporter costs O(accessors x file size) (1,000 pieces x
+// 121 frames took ~7 s here), so the scale test keeps the file small. Prints the time; never
+// fails on it.
+TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
+    constexpr uint32_t kFewFrames = 11;
+    TempDir dir;
+    const Model m = box_grid(10, 10, 10, 0.1, Vec3(0, 0, 0), 1000, 1);
+    Trajectory t;
+    t.fps = 30;
+    t.pieces = uint32_t(m.pieces.size());
+    for (uint32_t f = 0; f < kFewFrames; ++f)
+        for (uint32_t b = 0; b < t.pieces; ++b) {
+            BodyPose p;
+            p.position = m.pieces[b].mass.center.cast<float>() + Eigen::Vector3f(0, -0.01f * f, 0);
+            p.rotation = Eigen::AngleAxisf(0.01f * f, Eigen::Vector3f::UnitY());
+            t.poses.push_back(p);
+        }
+    const auto start = std::chrono::steady_clock::now();
+    export_glb(m, t, dir.file("big.glb"));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "export_glb: 1000 pieces x " << kFewFrames << " frames in " << seconds << " s, "
+              << fs::file_size(dir.file("big.glb")) << " bytes\n";
+    Imported g(dir.file("big.glb"));
+    ASSERT_TRUE(g.scene);
+    EXPECT_EQ(g.scene->mRootNode->mNumChildren, 1000u);
+    EXPECT_EQ(g.scene->mNumMeshes, 1000u);
+    ASSERT_EQ(g.scene->mAnimations[0]->mNumChannels, 1000u);
+    const aiNodeAnim* last = g.channel("piece_999");
+    ASSERT_TRUE(last);
+    EXPECT_EQ(last->mNumPositionKeys, kFewFrames);
+    EXPECT_NEAR(last->mPositionKeys[kFewFrames - 1].mValue.y, m.pieces[999].mass.center.y() - 0.1, 1e-5);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(g.scene->mMeshes[g.node("piece_999")->mMeshes[0]])[i],
+                                            piece_colour(999)[i], 1e-6);
+}
+
+}  // namespace
+}  // namespace shatter
