@@ -81,23 +81,26 @@ void sweep_outputs(const BatchJob& job, const std::vector<const BatchRunResult*>
 
     // Table: every run, failed ones too.
     std::string md = "| run | breaks | fragments | stored at breaks (J) | injected (J) | KE 0.1 s after first break (J) | "
-                     "peak piece speed (m/s) |\n|---|---:|---:|---:|---:|---:|---:|\n";
-    std::string csv = "run,breaks,fragments,stored_J,injected_J,kinetic_after_first_break_J,peak_speed_m_per_s\n";
+                     "spread KE 0.1 s after (J) | peak piece speed (m/s) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    std::string csv = "run,breaks,fragments,stored_J,injected_J,kinetic_after_first_break_J,spread_after_first_break_J,"
+                      "peak_speed_m_per_s\n";
     for (const BatchRunResult* r : runs) {
         if (r->summary.is_null()) {
-            md += fmt::format("| {} | failed | | | | | |\n", r->caption);
-            csv += fmt::format("\"{}\",,,,,,\n", r->caption);
+            md += fmt::format("| {} | failed | | | | | | |\n", r->caption);
+            csv += fmt::format("\"{}\",,,,,,,\n", r->caption);
             continue;
         }
         const json& s = r->summary["simulation"];
-        const double ke = number_or(s, "kinetic_energy_0.1s_after_first_break_J", NAN);
-        md += fmt::format("| {} | {} | {} | {:.4g} | {:.4g} | {} | {:.3g} |\n", r->caption, s["breaks"].get<size_t>(),
+        const double ke = number_or(s, "kinetic_energy_after_first_break_J", NAN);
+        const double spread = number_or(s, "spread_energy_after_first_break_J", NAN);
+        auto cell = [](double v, const char* format) { return std::isnan(v) ? std::string("-") : fmt::format(fmt::runtime(format), v); };
+        md += fmt::format("| {} | {} | {} | {:.4g} | {:.4g} | {} | {} | {:.3g} |\n", r->caption, s["breaks"].get<size_t>(),
                           s["fragments"].get<size_t>(), s["stored_energy_J"].get<double>(),
-                          s["injected_energy_J"].get<double>(), std::isnan(ke) ? "-" : fmt::format("{:.4g}", ke),
+                          s["injected_energy_J"].get<double>(), cell(ke, "{:.4g}"), cell(spread, "{:.4g}"),
                           s["peak_piece_speed_m_per_s"].get<double>());
-        csv += fmt::format("\"{}\",{},{},{:.9g},{:.9g},{},{:.9g}\n", r->caption, s["breaks"].get<size_t>(),
+        csv += fmt::format("\"{}\",{},{},{:.9g},{:.9g},{},{},{:.9g}\n", r->caption, s["breaks"].get<size_t>(),
                            s["fragments"].get<size_t>(), s["stored_energy_J"].get<double>(),
-                           s["injected_energy_J"].get<double>(), std::isnan(ke) ? "" : fmt::format("{:.9g}", ke),
+                           s["injected_energy_J"].get<double>(), cell(ke, "{:.9g}"), cell(spread, "{:.9g}"),
                            s["peak_piece_speed_m_per_s"].get<double>());
     }
     const std::string md_path = (dir / (job.name + ".table.md")).string();

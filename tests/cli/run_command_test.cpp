@@ -198,6 +198,48 @@ TEST(RunCommand, KilledAtAnyMomentAndRunAgainItEndsWithTheSameBytes) {
 }
 
 
+TEST(RunCommand, MissingMeshMalformedShotAndUnknownKeysAreClearErrors) {
+    TempDir dir;
+    write_cube_shot(dir);
+    const std::string missing = dir.write("missing.toml", "[mesh]\npath = \"nowhere.obj\"\n");
+    auto r = run_shatter({"run", missing, "-o", dir.file("a")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("nowhere.obj"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("a/missing.model")));
+    const std::string malformed = dir.write("malformed.toml", "[mesh]\npath = \"cube.obj\"\n[material\nalpha = 1\n");
+    r = run_shatter({"run", malformed, "-o", dir.file("b")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("malformed.toml:3"), std::string::npos) << r.err;
+    const std::string unknown = dir.write("unknown.toml", "[mesh]\npath = \"cube.obj\"\n[material]\nalpah = 1\n");
+    r = run_shatter({"run", unknown, "-o", dir.file("c")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("unknown.toml:4"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("did you mean 'alpha'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("c")));
+}
+
+// Without ffmpeg the movie cannot be made: exit code 6 with the fix, and every other output is
+// still made.
+TEST(RunCommand, WithoutFfmpegTheOtherOutputsAreStillMade) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string out = dir.file("out");
+    auto r = testing_support::run_command({"/usr/bin/env", "PATH=" + dir.file("empty-path"), SHATTER_BINARY, "run", shot,
+                                           "-o", out, "--no-progress"});
+    EXPECT_EQ(r.exit_code, 6) << r.out << r.err;
+    EXPECT_NE(r.err.find("ffmpeg"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("make deps"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out + "/cube.mp4"));
+    for (const char* f : {"cube.model", "cube.traj", "frames/frame_00015.png", "cube.contact.png", "cube.glb", "summary.json"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+    EXPECT_NE(r.out.find("FAILED:   encode"), std::string::npos) << r.out;
+    // With ffmpeg back, only the movie is made.
+    auto again = run_shatter({"run", shot, "-o", out, "--no-progress"});
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_TRUE(fs::exists(out + "/cube.mp4"));
+    EXPECT_NE(stage_status(again.out, "render").find("(up to date)"), std::string::npos) << again.out;
+}
+
 // A disk that fills while frames are written: a clear message naming the file and the reason, the
 // Io exit code, and the finished stages intact (their stamps still verify, so a run on a roomier
 // disk would only redo the frames).

@@ -1,0 +1,99 @@
+#include "pipeline/run_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <optional>
+#include <sstream>
+
+namespace shatter {
+
+using json = nlohmann::ordered_json;
+
+namespace {
+
+// Translational kinetic energy of the pieces relative to their common centre of mass at frame f
+// (velocities by central differences of the recorded positions).
+double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
+    if (t.frames() < 3) return 0;
+    f = std::clamp<uint32_t>(f, 1, t.frames() - 2);
+    double mass = 0;
+    Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> v(t.pieces);
+    for (uint32_t b = 0; b < t.pieces; ++b) {
+        v[b] = (t.pose(f + 1, b).position - t.pose(f - 1, b).position).cast<double>() * (t.fps / 2);
+        mass += model.pieces[b].mass.mass;
+        momentum += model.pieces[b].mass.mass * v[b];
+    }
+    const Eigen::Vector3d v_cm = mass > 0 ? Eigen::Vector3d(momentum / mass) : Eigen::Vector3d::Zero();
+    double e = 0;
+    for (uint32_t b = 0; b < t.pieces; ++b) e += 0.5 * model.pieces[b].mass.mass * (v[b] - v_cm).squaredNorm();
+    return e;
+}
+
+}  // namespace
+
+nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& traj, const std::string& breaks_jsonl,
+                      const std::string& energy_csv_text) {
+    // Breaks: count, energies, and which constraints are gone.
+    std::vector<uint32_t> parent(model.pieces.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    std::function<uint32_t(uint32_t)> find = [&](uint32_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+    std::vector<bool> broken(model.constraints.size(), false);
+    size_t breaks = 0;
+    double stored = 0, injected = 0, first_break = -1;
+    std::istringstream lines(breaks_jsonl);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty()) continue;
+        const nlohmann::json b = nlohmann::json::parse(line);
+        ++breaks;
+        stored += b.at("stored_energy_J").get<double>();
+        injected += b.at("injected_energy_J").get<double>();
+        if (first_break < 0) first_break = b.at("time_s").get<double>();
+        const uint32_t c = b.at("constraint").get<uint32_t>();
+        if (c < broken.size()) broken[c] = true;
+    }
+    for (size_t c = 0; c < model.constraints.size(); ++c)
+        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
+    size_t fragments = 0;
+    for (uint32_t i = 0; i < parent.size(); ++i) fragments += find(i) == i;
+
+    // Kinetic energy 0.1 s after the first break, from the energy books.
+    std::optional<double> kinetic_after;
+    if (first_break >= 0) {
+        std::istringstream rows(energy_csv_text);
+        std::string row;
+        std::getline(rows, row);  // header
+        double best = 1e300;
+        while (std::getline(rows, row)) {
+            double t = 0, k = 0;
+            if (std::sscanf(row.c_str(), "%lf,%lf", &t, &k) != 2) continue;
+            if (std::abs(t - (first_break + 0.1)) < best) best = std::abs(t - (first_break + 0.1)), kinetic_after = k;
+        }
+    }
+    // Peak piece speed between recorded frames.
+    double peak_speed = 0;
+    for (uint32_t f = 1; f < traj.frames(); ++f)
+        for (uint32_t b = 0; b < traj.pieces; ++b)
+            peak_speed = std::max(peak_speed, double((traj.pose(f, b).position - traj.pose(f - 1, b).position).norm()) * traj.fps);
+
+    json j;
+    j["frames"] = traj.frames();
+    j["fps"] = traj.fps;
+    j["complete"] = traj.complete;
+    j["breaks"] = breaks;
+    j["first_break_s"] = first_break >= 0 ? json(first_break) : json(nullptr);
+    j["stored_energy_J"] = stored;
+    j["injected_energy_J"] = injected;
+    j["fragments"] = fragments;
+    j["kinetic_energy_after_first_break_J"] = kinetic_after ? json(*kinetic_after) : json(nullptr);
+    j["spread_energy_after_first_break_J"] =
+        first_break >= 0 ? json(spread_energy(model, traj, uint32_t(std::lround((first_break + 0.1) * traj.fps))))
+                         : json(nullptr);
+    j["peak_piece_speed_m_per_s"] = peak_speed;
+    return j;
+}
+
+
+}  // namespace shatter
