@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <thread>
@@ -238,6 +239,30 @@ TEST(RunCommand, WithoutFfmpegTheOtherOutputsAreStillMade) {
     EXPECT_EQ(again.exit_code, 0) << again.err;
     EXPECT_TRUE(fs::exists(out + "/cube.mp4"));
     EXPECT_NE(stage_status(again.out, "render").find("(up to date)"), std::string::npos) << again.out;
+}
+
+// File names are bytes, never commands: a shot, mesh and output folder named with spaces, quotes,
+// $(...), backticks, semicolons, a newline and non-ASCII letters go through every stage,
+// ffmpeg and matplotlib included, and nothing they spell is run.
+TEST(RunCommand, HostileNamesWorkEverywhereAndRunNothing) {
+    TempDir dir;
+    const std::string hostile = "it's \"$(touch pwned)\" `touch pwned`; touch pwned\nZ\u00fcrich \u00e9t\u00e9 %d";
+    const fs::path folder = dir.path() / hostile;
+    fs::create_directories(folder);
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", folder / (hostile + ".obj"));
+    std::string shot_text = kCubeShot;
+    const std::string plain = "\"cube.obj\"";
+    shot_text.replace(shot_text.find(plain), plain.size(), "'''" + hostile + ".obj'''");  // a TOML literal string
+    const std::string shot = (folder / (hostile + ".toml")).string();
+    std::ofstream(shot) << shot_text;
+    const std::string out = (folder / ("out " + hostile)).string();
+    auto r = testing_support::run_command({SHATTER_BINARY, "run", shot, "-o", out, "--no-progress"}, dir.path().string());
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    for (const std::string f : {".model", ".traj", ".mp4", ".contact.png", ".energy.png", ".glb"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / (hostile + f))) << f;
+    EXPECT_TRUE(fs::exists(fs::path(out) / "frames/frame_00015.png"));
+    for (const auto& e : fs::recursive_directory_iterator(dir.path()))
+        EXPECT_NE(e.path().filename().string(), "pwned") << "a file name was run as a command";
 }
 
 // A disk that fills while frames are written: a clear message naming the file and the reason, the
