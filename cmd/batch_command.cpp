@@ -36,7 +36,7 @@ int run(const BatchFlags& f) {
 RunCommand add_batch_command(CLI::App& root) {
     auto f = std::make_shared<BatchFlags>();
     CLI::App* c = root.add_subcommand(
-        "batch", "Run every shot and parameter sweep of a batch file (docs/batch.md), N runs at a time, sharing cached "
+        "batch", "Run every shot and parameter sweep of a batch file (docs/pipeline.md), N runs at a time, sharing cached "
                  "stages (one prescore for an alpha sweep). A failed run is reported; the others finish. Per sweep: a "
                  "strip, an energy plot and a table. Exit code 1 when any run failed.");
     c->add_option("jobs", f->jobs, "the batch file (.toml with [[job]] tables)")->required();

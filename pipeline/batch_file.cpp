@@ -132,7 +132,7 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir) {
     TomlSection top(root, path, "");
     batch.output_dir = (fs::path("out") / fs::path(path).stem()).string();
     if (const toml::node* n = top.node("batch")) {
-        if (!n->is_table()) top.fail(n, "'batch' must be a table: [batch]", "see docs/batch.md");
+        if (!n->is_table()) top.fail(n, "'batch' must be a table: [batch]", "see docs/pipeline.md");
         TomlSection s(*n->as_table(), path, "batch");
         s.integer("workers", batch.workers, kWorkersLimits);
         std::string out;
@@ -142,7 +142,7 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir) {
     if (!output_dir.empty()) batch.output_dir = output_dir;
     const toml::node* jobs = top.node("job");
     if (!jobs || !jobs->is_array_of_tables() || jobs->as_array()->empty())
-        top.fail(jobs, "a batch file needs at least one [[job]]", "add [[job]] with shot = \"SHOT.toml\" (docs/batch.md)");
+        top.fail(jobs, "a batch file needs at least one [[job]]", "add [[job]] with shot = \"SHOT.toml\" (docs/pipeline.md)");
     std::set<std::string> names;
     size_t index = 0;
     for (const toml::node& j : *jobs->as_array()) {

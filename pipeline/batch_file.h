@@ -1,5 +1,5 @@
 // The batch file of `shatter batch` and `shatter submit`: shots and parameter sweeps (TOML,
-// docs/batch.md).
+// docs/pipeline.md).
 //
 //   [batch]
 //   workers = 2                  # parallel runs (shatter batch --workers overrides)
