@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "support/cube_shot.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 
@@ -15,25 +16,6 @@ namespace fs = std::filesystem;
 using testing_support::run_shatter;
 using testing_support::slurp;
 using testing_support::TempDir;
-
-const char* kCubeShot = R"([mesh]
-path = "cube.obj"
-scale = 0.1
-[prescore]
-pieces = 4
-resolution = 5
-[object]
-position = [0, 0.5, 0]
-[material]
-stiffness = 1e12
-strength = 2e3
-[simulate]
-duration = 0.5
-[render]
-width = 160
-height = 90
-shadow_map = 512
-)";
 
 // A PNG's width and height from its IHDR chunk (bytes 16 to 23, big-endian).
 std::optional<std::pair<uint32_t, uint32_t>> read_png_size(const std::string& path) {
@@ -54,8 +36,7 @@ size_t count(const std::string& text, const std::string& what) {
 
 TEST(BatchCommand, SweepSharesOnePrescoreIsolatesABadJobAndMakesTheStripPlotAndTable) {
     TempDir dir;
-    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
-    dir.write("cube.toml", kCubeShot);
+    testing_support::write_cube_shot(dir);
     const std::string batch = dir.write("sweep.toml", R"([batch]
 workers = 2
 

@@ -14,6 +14,7 @@
 #include <map>
 #include <thread>
 
+#include "support/cube_shot.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 
@@ -24,32 +25,10 @@ namespace fs = std::filesystem;
 using testing_support::run_shatter;
 using testing_support::slurp;
 using testing_support::TempDir;
+using testing_support::kCubeShot;
+using testing_support::write_cube_shot;
 
 // A 10 cm cube in 4 pieces dropped from 0.5 m: 16 frames of 160x90, a couple of seconds in all.
-const char* kCubeShot = R"([mesh]
-path = "cube.obj"
-scale = 0.1
-[prescore]
-pieces = 4
-resolution = 5
-density = 1000
-[object]
-position = [0, 0.5, 0]
-[material]
-stiffness = 1e12
-strength = 2e3
-[simulate]
-duration = 0.5
-[render]
-width = 160
-height = 90
-shadow_map = 512
-)";
-
-std::string write_cube_shot(const TempDir& dir) {
-    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
-    return dir.write("cube.toml", kCubeShot);
-}
 
 int run_command_status(const std::vector<std::string>& args) { return testing_support::run_command(args).exit_code; }
 
@@ -197,7 +176,6 @@ TEST(RunCommand, KilledAtAnyMomentAndRunAgainItEndsWithTheSameBytes) {
     }
     EXPECT_GE(landed, 3) << "most kills should land while the run is still going";
 }
-
 
 TEST(RunCommand, MissingMeshMalformedShotAndUnknownKeysAreClearErrors) {
     TempDir dir;
