@@ -176,6 +176,7 @@ private:
     }
     StageReport& report(Stage s) {
         result_.stages.push_back({s, StageOutcome::NotAsked, 0, {}});
+        if (asked(s)) spdlog::info("[{}/{}] {}", size_t(s) + 1, std::size(kAllStages), to_string(s));
         return result_.stages.back();
     }
     void log_outcome(const StageReport& r) {
