@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps build demo test bench clean
+.PHONY: all deps build demo test bench asan fuzz study clean
 
 all: build
 
@@ -23,5 +23,21 @@ test: build
 bench: build
 	@bash scripts/bench.sh $(BUILD)
 
+# Reliability (docs/reliability.md). asan: every test under AddressSanitizer + UBSan (gcc, -O1)
+# in build-asan. fuzz: each libFuzzer target (clang) for FUZZ_SECONDS on its seed corpus.
+FUZZ_SECONDS ?= 60
+asan: deps
+	@bash scripts/asan.sh build-asan $(JOBS)
+
+fuzz: deps
+	@bash scripts/fuzz.sh $(FUZZ_SECONDS) build-fuzz $(JOBS)
+
+# The accuracy and cost study (docs/accuracy.md): CSV into bench/results/study, charts into docs/images.
+study: build
+	@cmake --build $(BUILD) --target study study_float -j $(JOBS)
+	@$(BUILD)/bench/study --out bench/results/study --refs $(BUILD)/study-refs
+	@$(BUILD)/bench/study_float --out bench/results/study --refs $(BUILD)/study-refs
+	@/usr/bin/python3 scripts/study_charts.py bench/results/study docs/images
+
 clean:
-	rm -rf $(BUILD) $(BUILD).configure.log out
+	rm -rf $(BUILD) $(BUILD).configure.log out build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

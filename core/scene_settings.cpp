@@ -80,6 +80,22 @@ const char* to_string(KickDirectionMode m) {
     return "?";
 }
 
+const char* to_string(BreakCriterion c) {
+    switch (c) {
+        case BreakCriterion::Force: return "force";
+        case BreakCriterion::BulletImpulse: return "bullet_impulse";
+    }
+    return "?";
+}
+
+const char* to_string(InstabilityMode m) {
+    switch (m) {
+        case InstabilityMode::Stop: return "stop";
+        case InstabilityMode::Clamp: return "clamp";
+    }
+    return "?";
+}
+
 // ---- to_json ---------------------------------------------------------------------------------
 
 namespace {
@@ -184,17 +200,21 @@ ojson to_json(const MaterialSettings& s) {
 }
 
 ojson to_json(const SimulateSettings& s) {
-    return {{"duration", s.duration},
-            {"fps", s.fps},
-            {"substeps", s.substeps},
-            {"iterations", s.iterations},
-            {"energy_split", to_string(s.energy_split)},
-            {"directions", to_string(s.directions)},
-            {"rate_limit", s.rate_limit},
-            {"rollback", s.rollback},
-            {"exact_energy", s.exact_energy},
-            {"seed", s.seed},
+    ojson j = {{"duration", s.duration},
+               {"fps", s.fps},
+               {"substeps", s.substeps},
+               {"iterations", s.iterations},
+               {"energy_split", to_string(s.energy_split)},
+               {"directions", to_string(s.directions)},
+               {"rate_limit", s.rate_limit},
+               {"rollback", s.rollback},
+               {"exact_energy", s.exact_energy},
+               {"seed", s.seed},
             {"max_cfm", s.max_cfm}};
+    // Only when not the default, so that trajectories made before the key existed keep their bytes.
+    if (s.break_criterion != BreakCriterion::Force) j["break_criterion"] = to_string(s.break_criterion);
+    if (s.on_instability != InstabilityMode::Stop) j["on_instability"] = to_string(s.on_instability);
+    return j;
 }
 
 // ---- scene_from_json ---------------------------------------------------------------------------

@@ -114,6 +114,16 @@ inline constexpr Limits kRestitutionLimits{0, 1, ""};
 
 enum class EnergySplitMode { Total, PerBody };
 enum class KickDirectionMode { Paper, Opposed };
+// When a constraint is overloaded: "force": the norm of its force exceeds strength x area
+// (docs/physics.md section 3); "bullet_impulse": Bullet's own per-row test, any world-axis row's
+// impulse in a step reaches strength x area x h (btTypedConstraint::setBreakingImpulseThreshold),
+// for comparison (docs/accuracy.md).
+enum class BreakCriterion { Force, BulletImpulse };
+// When the simulation goes unstable (a NaN or Inf, or kinetic energy beyond the energy budget,
+// simulate/instability.h): "stop": end the run there, keep the frames before, mark the trajectory
+// incomplete (exit code 5); "clamp": scale the pieces' velocities down to the budget and go on,
+// counting each clamp (a NaN still stops: there is nothing to clamp).
+enum class InstabilityMode { Stop, Clamp };
 
 struct SimulateSettings {
     double duration = 4.0;      // (unit: s)
@@ -127,6 +137,8 @@ struct SimulateSettings {
     bool exact_energy = false;  // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E
     uint64_t seed = 1;          // seed of the random kick directions
     double max_cfm = 0.5;       // refuse settings whose constraints would need a larger CFM (unit: 1)
+    BreakCriterion break_criterion = BreakCriterion::Force;  // "force" (norm) or "bullet_impulse" (per row)
+    InstabilityMode on_instability = InstabilityMode::Stop;  // "stop" or "clamp" (simulate/instability.h)
 };
 inline constexpr Limits kDurationLimits{1e-3, 3600, "s"};
 inline constexpr Limits kFpsLimits{1, 1000, "frames/s"};
@@ -145,5 +157,7 @@ SceneSettings scene_from_json(const nlohmann::json& j, const std::string& source
 const char* to_string(ShapeKind k);
 const char* to_string(EnergySplitMode m);
 const char* to_string(KickDirectionMode m);
+const char* to_string(BreakCriterion c);
+const char* to_string(InstabilityMode m);
 
 }  // namespace shatter

@@ -258,6 +258,10 @@ void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
     s.boolean("exact_energy", simulate.exact_energy);
     s.integer("seed", simulate.seed);
     s.number("max_cfm", simulate.max_cfm, kMaxCfmLimits);
+    choice<BreakCriterion>(s, "break_criterion", simulate.break_criterion,
+                           {{"force", BreakCriterion::Force}, {"bullet_impulse", BreakCriterion::BulletImpulse}});
+    choice<InstabilityMode>(s, "on_instability", simulate.on_instability,
+                            {{"stop", InstabilityMode::Stop}, {"clamp", InstabilityMode::Clamp}});
     s.finish();
 }
 

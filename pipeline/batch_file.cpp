@@ -64,7 +64,7 @@ const toml::table* table_key(TomlSection& s, const char* key) {
 BatchJob read_job(TomlSection& s, const BatchFile& batch) {
     BatchJob job;
     if (!s.text("shot", job.shot) || job.shot.empty())
-        s.fail(nullptr, fmt::format("{} has no shot", s.key_name("")), "add shot = \"SHOT.toml\" (relative to the batch file)");
+        s.fail(nullptr, fmt::format("{} is missing", s.key_name("shot")), "add shot = \"SHOT.toml\" (relative to the batch file)");
     if (fs::path(job.shot).is_relative())
         job.shot = (fs::path(batch.path).parent_path() / job.shot).lexically_normal().string();
     job.name = fs::path(job.shot).stem().string();

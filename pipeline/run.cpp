@@ -118,6 +118,8 @@ public:
     }
 
     RunResult run() {
+        // A missing mesh is bad input found before the output folder is touched.
+        if (!shot_.mesh.path.empty() && !shot_.generate) file_hash(shot_.mesh.path);
         make_directories(dir_.string());
         if (options_.chunks == 1) remove_stale_temporaries();
         LogFile log((dir_ / "run.log").string());

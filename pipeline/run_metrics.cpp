@@ -1,5 +1,7 @@
 #include "pipeline/run_metrics.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -44,15 +46,23 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     size_t breaks = 0;
     double stored = 0, injected = 0, first_break = -1;
     std::istringstream lines(breaks_jsonl);
+    size_t line_no = 0;
     for (std::string line; std::getline(lines, line);) {
+        ++line_no;
         if (line.empty()) continue;
-        const nlohmann::json b = nlohmann::json::parse(line);
-        ++breaks;
-        stored += b.at("stored_energy_J").get<double>();
-        injected += b.at("injected_energy_J").get<double>();
-        if (first_break < 0) first_break = b.at("time_s").get<double>();
-        const uint32_t c = b.at("constraint").get<uint32_t>();
-        if (c < broken.size()) broken[c] = true;
+        // A damaged log is bad input, not a bug (found by tests/fuzz/logs_fuzz.cpp).
+        try {
+            const nlohmann::json b = nlohmann::json::parse(line);
+            ++breaks;
+            stored += b.at("stored_energy_J").get<double>();
+            injected += b.at("injected_energy_J").get<double>();
+            if (first_break < 0) first_break = b.at("time_s").get<double>();
+            const uint32_t c = b.at("constraint").get<uint32_t>();
+            if (c < broken.size()) broken[c] = true;
+        } catch (const nlohmann::json::exception& e) {
+            throw_input_error("break log line " + std::to_string(line_no), e.what(),
+                              "simulate again (shatter run --force --stages simulate)");
+        }
     }
     for (size_t c = 0; c < model.constraints.size(); ++c)
         if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);

@@ -5,12 +5,21 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "prescore/ply_header.h"
 
 namespace shatter {
 namespace {
@@ -140,6 +149,15 @@ void check_path(const std::string& path) {
     }
 }
 
+// The first 64 kB of the file (what a PLY header may take).
+std::string read_file_head(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(64 * 1024, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    return head;
+}
+
 void check_scale(const std::string& path, double scale) {
     if (!std::isfinite(scale) || scale <= 0) {
         std::ostringstream s;
@@ -148,12 +166,8 @@ void check_scale(const std::string& path, double scale) {
     }
 }
 
-}  // namespace
-
-TriangleMesh load_mesh(const std::string& path, double scale) {
-    check_scale(path, scale);
-    check_path(path);
-
+// assimp's import and our merge, in this process.
+TriangleMesh import_in_process(const std::string& path) {
     Assimp::Importer importer;
     // Drop every per-vertex attribute except the position so JoinIdenticalVertices joins on
     // position alone (the OBJ loader un-shares vertices: the bunny has 208,998 before joining).
@@ -190,6 +204,110 @@ TriangleMesh load_mesh(const std::string& path, double scale) {
         throw_input_error(path, "mesh file has no triangles (only points and lines)",
                           "give a file with a surface mesh; points and lines are ignored");
     }
+    return mesh;
+}
+
+// Debian's assimp 5.2 crashes (SIGSEGV) on some malformed files (found by tests/fuzz/mesh_fuzz.cpp:
+// an OFF face with an index far out of range; PLY headers, see ply_header.h), and a library crash
+// must not end `shatter prescore` with a signal. So the import runs in a child process (fork), which
+// sends the merged mesh, or its Error's message, back through a pipe; a child that dies is a bad
+// file (exit code 3) whose message says the reader crashed. The cost is one fork per mesh.
+bool write_all(int fd, const void* data, size_t n) {
+    const char* p = static_cast<const char*>(data);
+    while (n > 0) {
+        const ssize_t w = ::write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) return false;
+        p += w, n -= size_t(w);
+    }
+    return true;
+}
+
+[[noreturn]] void child_import(const std::string& path, int fd) {
+    // A crash in the child ends it with the signal, which the parent reports; no handler of the
+    // parent's (a sanitizer's, a crash reporter's) runs in the child.
+    for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(s, SIG_DFL);
+    std::string out;
+    try {
+        const TriangleMesh m = import_in_process(path);
+        const uint64_t nv = m.vertices.size(), nt = m.triangles.size();
+        out.push_back('M');
+        out.append(reinterpret_cast<const char*>(&nv), 8);
+        for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
+        out.append(reinterpret_cast<const char*>(&nt), 8);
+        out.append(reinterpret_cast<const char*>(m.triangles.data()), nt * sizeof(Tri));
+    } catch (const Error& e) {
+        out = std::string("E") + e.what();
+    } catch (const std::bad_alloc&) {
+        out = "A";
+    } catch (...) {
+        ::_exit(70);
+    }
+    ::_exit(write_all(fd, out.data(), out.size()) ? 0 : 71);
+}
+
+TriangleMesh import_isolated(const std::string& path, const std::string& format_fix) {
+    int fds[2];
+    if (::pipe(fds) != 0) return import_in_process(path);
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        ::close(fds[0]);
+        ::close(fds[1]);
+        return import_in_process(path);
+    }
+    if (pid == 0) {
+        ::close(fds[0]);
+        child_import(path, fds[1]);
+    }
+    ::close(fds[1]);
+    std::string bytes;
+    char buf[1 << 16];
+    for (;;) {
+        const ssize_t r = ::read(fds[0], buf, sizeof buf);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) break;
+        bytes.append(buf, size_t(r));
+    }
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFSIGNALED(status) || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty()) {
+        const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status)) + " (" +
+                                                          strsignal(WTERMSIG(status)) + ")"
+                                                    : "exit code " + std::to_string(WEXITSTATUS(status));
+        throw_input_error(path, "the mesh reader (assimp) crashed on this file (" + how + ")",
+                          "the file is damaged or malformed; " + format_fix);
+    }
+    if (bytes[0] == 'E') throw Error(ExitCode::BadInput, bytes.substr(1));
+    if (bytes[0] == 'A') throw std::bad_alloc();
+    TriangleMesh m;
+    uint64_t nv = 0, nt = 0;
+    size_t at = 1;
+    std::memcpy(&nv, bytes.data() + at, 8);
+    at += 8;
+    m.vertices.resize(nv);
+    for (Vec3& v : m.vertices) std::memcpy(v.data(), bytes.data() + at, 24), at += 24;
+    std::memcpy(&nt, bytes.data() + at, 8);
+    at += 8;
+    m.triangles.resize(nt);
+    std::memcpy(m.triangles.data(), bytes.data() + at, nt * sizeof(Tri));
+    return m;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path, double scale) {
+    check_scale(path, scale);
+    check_path(path);
+    // assimp crashes on some malformed PLY headers (prescore/ply_header.h): check them first.
+    if (const std::string head = read_file_head(path); looks_like_ply(head)) check_ply_header(head, path);
+
+    const std::string format_fix =
+        "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
+        "3DS, FBX, ...)";
+    TriangleMesh mesh = import_isolated(path, format_fix);
     for (Vec3& v : mesh.vertices) v *= scale;
     return mesh;
 }

@@ -43,6 +43,18 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
+// Mesh_3's predicates underflow on a mesh far below a nanometre (a 1e-20 m cube crashed inside
+// CGAL's refinement: found by tests/bad_inputs), and nothing this tool simulates is that small
+// or beyond a million kilometres, so the size (after --scale) must lie within these bounds.
+constexpr double kMinDiagonal = 1e-9, kMaxDiagonal = 1e9;  // (unit: m)
+void refuse_out_of_scale(const MeshCheck& c, const std::string& path) {
+    if (c.diagonal >= kMinDiagonal && c.diagonal <= kMaxDiagonal) return;
+    throw_input_error(path,
+                      fmt::format("the mesh's bounding-box diagonal is {:.4g} m, outside {:g} to {:g} m", c.diagonal,
+                                  kMinDiagonal, kMaxDiagonal),
+                      "set the mesh scale (--scale or [mesh] scale) to the size of one mesh unit in metres");
+}
+
 // A mesh with no volume (all points in a plane, or a closed surface that encloses nothing) has
 // nothing inside to fracture; alpha wrapping would only turn it into a sheet of the offset's
 // thickness, so it is refused rather than repaired.
@@ -63,6 +75,7 @@ void refuse_flat(const MeshCheck& c, const std::string& path) {
 TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, PrescoreReport& report) {
     report.input = check_mesh(mesh);
     spdlog::info("mesh: {}", describe(report.input));
+    refuse_out_of_scale(report.input, settings.path);
     refuse_flat(report.input, settings.path);
     if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
     std::string why;

@@ -1,6 +1,25 @@
 #include "simulate/breaking.h"
 
+#include <cmath>
+
 namespace shatter {
+
+std::vector<Overload> find_overloads(BulletWorld& world, BreakCriterion criterion) {
+    std::vector<Overload> over;
+    for (size_t c = 0; c < world.constraint_count(); ++c) {
+        if (!world.active(c)) continue;
+        const double f = world.force_on_a(c).norm();
+        const double ratio = world.strength(c) > 0 ? f / world.strength(c) : INFINITY;
+        if (criterion == BreakCriterion::BulletImpulse) {
+            if (!world.bullet_disabled(c)) continue;
+            world.enable(c);
+        } else if (!(f > world.strength(c))) {
+            continue;
+        }
+        over.push_back({c, ratio});
+    }
+    return over;
+}
 
 uint64_t break_key(uint64_t seed, size_t constraint) {
     uint64_t z = seed + 0x9e3779b97f4a7c15ull * (constraint + 1);

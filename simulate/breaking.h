@@ -5,6 +5,7 @@
 
 #include <array>
 
+#include "simulate/break_policy.h"
 #include "simulate/bullet_world.h"
 #include "simulate/simulate.h"
 
@@ -15,6 +16,12 @@ namespace shatter {
 // is now. `key` seeds the random direction of a pure-tension break.
 BreakRecord energize_broken(BulletWorld& world, size_t constraint, const std::array<BodyAtPivot, 2>& load,
                             const EnergizeSettings& settings, uint64_t key);
+
+// The constraints overloaded in the last step, ascending, with |f| / strength. With
+// BreakCriterion::Force: those whose force norm exceeds their strength. With BulletImpulse: those
+// Bullet disabled (a row's impulse reached strength x h); they are enabled again here, and the
+// ones the break policy picks are then removed as usual.
+std::vector<Overload> find_overloads(BulletWorld& world, BreakCriterion criterion);
 
 // The seed of constraint c's random kick direction.
 uint64_t break_key(uint64_t seed, size_t constraint);

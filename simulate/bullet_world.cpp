@@ -284,6 +284,7 @@ void BulletWorld::build_joints(const Model& model) {
         j.constraint = std::make_unique<CompliantPointConstraint>(
             *a.body, *b.body, a.body->getWorldTransform().inverse() * pivot, b.body->getWorldTransform().inverse() * pivot,
             setup_.material.stiffness * c.area, setup_.material.damping * c.area, setup_.h);
+        if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * setup_.h));
         m.world.addConstraint(j.constraint.get(), true);
         j.active = true;
     }
@@ -340,6 +341,14 @@ double BulletWorld::stiffness(size_t c) const {
 Vec3 BulletWorld::force_on_a(size_t c) const {
     const auto& j = impl_->joints[c];
     return j.constraint ? to_eigen(j.constraint->feedback().m_appliedForceBodyA) : Vec3::Zero();
+}
+bool BulletWorld::bullet_disabled(size_t c) const {
+    const auto& j = impl_->joints[c];
+    return j.active && j.constraint && !j.constraint->isEnabled();
+}
+void BulletWorld::enable(size_t c) {
+    const auto& j = impl_->joints[c];
+    if (j.constraint) j.constraint->setEnabled(true);
 }
 double BulletWorld::max_cfm(size_t c) const {
     const auto& j = impl_->joints[c];
@@ -472,6 +481,14 @@ bool BulletWorld::finite() const {
             return false;
     }
     return true;
+}
+
+void BulletWorld::scale_piece_velocities(double factor) {
+    for (auto& p : impl_->pieces) {
+        if (!p.dynamic) continue;
+        p.body->setLinearVelocity(p.body->getLinearVelocity() * factor);
+        p.body->setAngularVelocity(p.body->getAngularVelocity() * factor);
+    }
 }
 
 BodyPose BulletWorld::piece_pose(uint32_t i) const {

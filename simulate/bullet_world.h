@@ -34,6 +34,9 @@ struct WorldSetup {
     MaterialSettings material;
     double h = 1.0 / 240;   // solver step (unit: s)
     uint32_t iterations = 20;
+    // Bullet's own breaking: each constraint gets the impulse threshold strength x h, which the
+    // solver checks per world-axis row and then disables the constraint (bullet_disabled).
+    bool bullet_breaking = false;
 };
 
 class BulletWorld {
@@ -63,6 +66,10 @@ public:
     double current_max_cfm(size_t c, double* min_row_inverse_mass) const;  // the same from the bodies as they are now
     uint32_t piece_a(size_t c) const;
     uint32_t piece_b(size_t c) const;
+    // Bullet disabled it in the last step (its own per-row threshold, WorldSetup::bullet_breaking).
+    bool bullet_disabled(size_t c) const;
+    // Enables it again (a Bullet break the break policy did not pick).
+    void enable(size_t c);
     // Removes it from the world (its pieces may collide again when no other constraint joins them).
     void remove_constraint(size_t c);
     // The two bodies at the constraint's pivot (its mid-point), for energize().
@@ -78,6 +85,8 @@ public:
     Vec3 linear_momentum() const;     // (unit: kg m/s)
     Vec3 angular_momentum() const;    // about the world origin (unit: kg m^2/s)
     bool finite() const;              // every body's position and velocity finite
+    // Multiplies every dynamic piece's linear and angular velocity by `factor` (on_instability = clamp).
+    void scale_piece_velocities(double factor);
 
     // Poses as the trajectory stores them.
     BodyPose piece_pose(uint32_t piece) const;

@@ -12,6 +12,7 @@
 #include "simulate/break_policy.h"
 #include "simulate/breaking.h"
 #include "simulate/bullet_world.h"
+#include "simulate/instability.h"
 #include "simulate/spring.h"
 
 namespace shatter {
@@ -59,12 +60,7 @@ public:
         if (in_.simulate.rollback) start = world_.save();
         world_.step();
         ++out.steps;
-        std::vector<Overload> over;
-        for (size_t c = 0; c < world_.constraint_count(); ++c) {
-            if (!world_.active(c)) continue;
-            const double f = world_.force_on_a(c).norm();
-            if (f > world_.strength(c)) over.push_back({c, world_.strength(c) > 0 ? f / world_.strength(c) : INFINITY});
-        }
+        const std::vector<Overload> over = find_overloads(world_, in_.simulate.break_criterion);
         const std::vector<size_t> broken = policy_.select(over, world_.time());
         if (broken.empty()) return;
         // The load at the break defines E and the directions; a rollback re-runs the step without
@@ -79,6 +75,8 @@ public:
         if (start) world_.step();
         for (size_t i = 0; i < broken.size(); ++i) energize_break(broken[i], loads[i], out);
     }
+
+    double injected() const { return injected_; }  // (unit: J)
 
     EnergySample books() const {
         return {world_.time(), world_.kinetic_energy(), world_.potential_energy(), world_.stored_energy(), injected_,
@@ -117,13 +115,38 @@ void record(const BulletWorld& world, Trajectory& t) {
     for (uint32_t p = 0; p < world.props(); ++p) t.poses.push_back(world.prop_pose(p));
 }
 
+// After a step: false when the run must stop (a NaN, or runaway energy with on_instability = stop);
+// runaway energy with clamp scales the velocities down to the limit and is counted.
+bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double injected, InstabilityMode mode,
+                     SimulationResult& out) {
+    if (InstabilityGuard::non_finite(world)) {
+        out.complete = false;
+        out.stop_reason = InstabilityGuard::describe_non_finite(world, out.breaks);
+        return false;
+    }
+    const EnergyLimit e = guard.limit(world, injected);
+    if (!(e.kinetic > e.limit)) return true;
+    if (mode == InstabilityMode::Stop) {
+        out.complete = false;
+        out.stop_reason = InstabilityGuard::describe_runaway(e, world, out.breaks);
+        return false;
+    }
+    if (out.clamps++ == 0) {
+        out.first_clamp_time = world.time();
+        out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks);
+        spdlog::warn("simulate: clamping velocities (on_instability = clamp): {}", out.first_clamp);
+    }
+    world.scale_piece_velocities(std::sqrt(e.limit / e.kinetic));
+    return true;
+}
+
 }  // namespace
 
 uint32_t frame_count(const SimulateSettings& s) { return uint32_t(std::llround(s.duration * s.fps)) + 1; }
 
 SimulationResult simulate(const Model& model, const SimulationInput& in, const std::string& model_id) {
     WorldSetup setup{in.scene, in.object, in.material, 1.0 / (in.simulate.fps * in.simulate.substeps),
-                     in.simulate.iterations};
+                     in.simulate.iterations, in.simulate.break_criterion == BreakCriterion::BulletImpulse};
     BulletWorld world(model, setup);
     check_cfm(world, model, in);
 
@@ -135,6 +158,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& in, const s
     t.pieces = world.pieces();
     t.props = world.props();
     Run run(in, world);
+    InstabilityGuard guard(world, model, in.scene, in.object, in.material);
     record(world, t);
     out.energy.push_back(run.books());
 
@@ -143,12 +167,8 @@ SimulationResult simulate(const Model& model, const SimulationInput& in, const s
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
         for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
             run.substep(out);
-            if (!world.finite()) {
-                out.complete = false;
-                out.stop_reason = fmt::format("a piece's position or velocity became NaN or infinite at t = {:.4f} s",
-                                              world.time());
-                break;
-            }
+            guard.after_step(world);
+            if (!check_stability(world, guard, run.injected(), in.simulate.on_instability, out)) break;
         }
         if (!out.complete) break;
         record(world, t);

@@ -55,11 +55,18 @@ struct SimulationResult {
     double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
+    // on_instability = clamp: how many steps had their velocities scaled down to the energy
+    // limit, the first one's time and description (simulate/instability.h).
+    uint64_t clamps = 0;
+    double first_clamp_time = -1;  // (unit: s)
+    std::string first_clamp;
 };
 
 // Runs the simulation. `model_id` (e.g. the model file's hash) goes into the trajectory's
 // settings. Throws Error(BadInput) for settings it refuses (e.g. CFM beyond max_cfm). An
-// instability (NaN) stops the run and returns what was recorded, complete = false.
+// instability (NaN, or runaway kinetic energy: simulate/instability.h) stops the run and returns
+// what was recorded, complete = false, stop_reason naming the time, piece and constraints; with
+// on_instability = clamp, runaway energy is clamped instead (SimulationResult::clamps).
 SimulationResult simulate(const Model& model, const SimulationInput& input, const std::string& model_id);
 
 // Where the frames go: frame count for duration and fps (frame 0 at t = 0 included).

@@ -1,0 +1,115 @@
+// study: accuracy against cost for shatter's simulation (issue 7; docs/accuracy.md shows and
+// explains the results). Writes CSV into --out; scripts/study_charts.py draws the charts.
+//
+//   study [--quick] [--out DIR] [--refs DIR] [--section NAME ...] [--scene NAME ...] [--no-render]
+//
+// Sections: identities, sweeps, methods, stability, continuum, speed (default: all).
+// --quick runs a reduced study on the small rig only (make test: ctest -L study) and checks the
+// headline numbers; exit 1 when one is off. Built a second time against Bullet's float build as
+// study_float, which runs only the identities and the substeps sweeps (its CSV files end in
+// _float) against the double build's references in --refs.
+#include <chrono>
+#include <cstdio>
+#include <set>
+
+#include <spdlog/spdlog.h>
+
+#include "bench/study_sections.h"
+#include "core/error.h"
+
+using namespace shatter::study;
+
+namespace {
+
+// The quick mode's checks; prints each with its value and returns false when one fails.
+bool check_headlines(const Headlines& h) {
+    bool ok = true;
+    auto check = [&](bool pass, const std::string& what) {
+        std::printf("%s %s\n", pass ? "ok  " : "FAIL", what.c_str());
+        ok = ok && pass;
+    };
+    check(h.energy_identity_breaks > 0 && h.energy_identity < 1e-9,
+          fmt::format("energy identity (rig, energized, exact energy): max |injected - alpha E| / alpha E = {:.3g} "
+                      "over {} breaks (< 1e-9)", h.energy_identity, h.energy_identity_breaks));
+    check(std::abs(h.stiffness_identity) < 1e-6,
+          fmt::format("stiffness identity (1e10 N/m^3, 8 substeps, 2000 iterations): k_measured / k - 1 = {:.3g} "
+                      "(|.| < 1e-6)", h.stiffness_identity));
+    bool decreasing = h.rig_substeps_error.size() >= 3;
+    std::string list;
+    for (size_t i = 0; i < h.rig_substeps_error.size(); ++i) {
+        list += fmt::format(" {:g}:{:.3g}", h.rig_substeps_error[i].first, 1e3 * h.rig_substeps_error[i].second);
+        if (i > 0) decreasing = decreasing && h.rig_substeps_error[i].second < h.rig_substeps_error[i - 1].second;
+    }
+    check(decreasing, "rig trajectory error decreases with substeps (substeps:mm)" + list);
+    check(h.plain_injected == 0, fmt::format("plain deletion injects nothing: {:g} J", h.plain_injected));
+    check(std::abs(h.energized_books) < 1e-9,
+          fmt::format("energized books: (injected - alpha E) / alpha E = {:.3g} (|.| < 1e-9)", h.energized_books));
+    check(std::abs(h.paper_books) > 0.01,
+          fmt::format("the paper's magnitudes miss alpha E on moving pieces: (injected - alpha E) / alpha E = {:+.3g} "
+                      "(|.| > 0.01)", h.paper_books));
+    check(h.cells_plain > 0 && h.stable_energized >= h.stable_plain,
+          fmt::format("stability (step x stiffness, alpha 1, inside the CFM guard): energized stable in {}/{} cells, "
+                      "plain in {}/{} (energized >= plain)", h.stable_energized, h.cells_energized, h.stable_plain,
+                      h.cells_plain));
+    check(h.guard_rescues == h.energized_fails,
+          fmt::format("stability (mass ratio x alpha): the rate limit makes stable {} of the {} cells where energized "
+                      "fails and plain breaking does not", h.guard_rescues, h.energized_fails));
+    return ok;
+}
+
+int run(int argc, char** argv) {
+    Options opt;
+    std::set<std::string> sections;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw shatter::Error(shatter::ExitCode::Usage, "study: " + a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--quick") opt.quick = true;
+        else if (a == "--out") opt.out = value();
+        else if (a == "--refs") opt.refs = value();
+        else if (a == "--section") sections.insert(value());
+        else if (a == "--scene") opt.scenes.push_back(value());
+        else if (a == "--no-render") opt.render = false;
+        else throw shatter::Error(shatter::ExitCode::Usage, "study: unknown argument " + a);
+    }
+#ifdef SHATTER_STUDY_FLOAT
+    opt.precision_only = true;
+    if (sections.empty()) sections = {"identities", "sweeps"};
+#endif
+    if (opt.scenes.empty())
+        opt.scenes = opt.quick ? std::vector<std::string>{"rig"}
+                               : std::vector<std::string>{"rig", "beam", "plate", "chain", "bunny"};
+    if (opt.quick) opt.render = false;
+    if (sections.empty()) sections = {"identities", "sweeps", "methods", "stability", "continuum", "speed"};
+    Headlines h;
+    const auto t0 = std::chrono::steady_clock::now();
+    using Fn = bool (*)(const Options&, Headlines&);
+    const std::pair<const char*, Fn> all[] = {{"identities", section_identities}, {"sweeps", section_sweeps},
+                                              {"methods", section_methods},       {"stability", section_stability},
+                                              {"continuum", section_continuum},   {"speed", section_speed}};
+    for (const auto& [name, fn] : all) {
+        if (!sections.count(name)) continue;
+        const auto s0 = std::chrono::steady_clock::now();
+        fn(opt, h);
+        std::fprintf(stderr, "study: %s %.1f s\n", name,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count());
+    }
+    std::fprintf(stderr, "study: total %.1f s\n",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (opt.quick) return check_headlines(h) ? 0 : 1;
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    spdlog::set_level(spdlog::level::warn);  // prescore's info lines would bury the section timings
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    }
+}

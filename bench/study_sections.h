@@ -1,0 +1,46 @@
+// The sections of the study program (bench/study.cpp), each writing one CSV into Options::out.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "bench/study.h"
+
+namespace shatter::study {
+
+struct Options {
+    bool quick = false;
+    bool precision_only = false;  // the float build: only the substeps sweeps and the identities
+    std::string out = "bench/results/study";
+    std::string refs = "/tmp/shatter-study-refs";  // reference trajectories (the float build reads them)
+    std::vector<std::string> scenes;               // for sweeps, methods and speed
+    bool render = true;                            // time rendering in the speed section
+};
+
+// The numbers `--quick` checks (docs/accuracy.md, "Headline numbers").
+struct Headlines {
+    double energy_identity = NAN;       // rig, energized, exact energy: max relative error per break
+    size_t energy_identity_breaks = 0;
+    double stiffness_identity = NAN;    // stiffness rig, 1e10 N/m^3, 8 substeps, 20 iterations
+    std::vector<std::pair<double, double>> rig_substeps_error;  // (substeps, trajectory error m)
+    double plain_injected = NAN;        // rig, plain: energy injected (must be 0)
+    double energized_books = NAN;       // rig, energized: (injected - alpha E) / alpha E
+    double paper_books = NAN;           // rig, paper literal: the same
+    size_t stable_plain = 0, cells_plain = 0;          // stability map h x stiffness, inside the CFM guard
+    size_t stable_energized = 0, cells_energized = 0;
+    // mass x alpha map: cells where plain breaking (alpha = 0 at that mass ratio) is stable and
+    // energized fails, and how many of those the rate limit (the guard) makes stable.
+    size_t energized_fails = 0, guard_rescues = 0;
+};
+
+bool section_identities(const Options& opt, Headlines& h);
+bool section_sweeps(const Options& opt, Headlines& h);
+bool section_methods(const Options& opt, Headlines& h);
+bool section_stability(const Options& opt, Headlines& h);
+bool section_continuum(const Options& opt, Headlines& h);
+bool section_speed(const Options& opt, Headlines& h);
+
+}  // namespace shatter::study

@@ -1,0 +1,119 @@
+// The stability map (docs/accuracy.md section 6): the rig (a fixed bar and two bars in a row,
+// 8 constraints) over step size and stiffness, mass ratio and alpha, alpha and rate limit, each
+// run classified as refused / NaN / energy growth / cascade / fly-apart / stable.
+#include <map>
+
+#include <spdlog/spdlog.h>
+
+#include "bench/study_sections.h"
+
+namespace shatter::study {
+
+namespace {
+
+std::string d(double v) { return fmt_double(v); }
+
+struct Cell {
+    Stability cls = Stability::Stable;
+    bool guard_refuses = false;  // the CFM guard (max_cfm 0.5) refuses these settings
+    size_t breaks = 0;
+    double growth = 0, wall = 0;
+};
+
+// Runs with the CFM guard; when it refuses, runs again without it (max_cfm 0.99) to see what
+// the guard prevents.
+Cell run_cell(StudyCase c) {
+    Cell cell;
+    c.input.simulate.max_cfm = 0.5;
+    RunOutcome o = run_case(c);
+    if (o.refused) {
+        cell.guard_refuses = true;
+        c.input.simulate.max_cfm = 0.99;
+        o = run_case(c);
+    }
+    cell.cls = classify(c, o, &cell.growth);
+    cell.breaks = o.sim.breaks.size();
+    cell.wall = o.wall_seconds;
+    return cell;
+}
+
+void row(Csv& csv, const std::string& map, const std::string& method, const char* xn, double x, const char* yn,
+         double y, const Cell& c) {
+    csv.row(fmt::format("{},{},{},{},{},{},{},{},{},{},{}", map, method, xn, d(x), yn, d(y), to_string(c.cls),
+                        c.guard_refuses, c.breaks, d(c.growth), d(c.wall)));
+}
+
+}  // namespace
+
+bool section_stability(const Options& opt, Headlines& h) {
+    Csv csv(opt.out, "stability.csv", "map,method,x_name,x,y_name,y,class,guard_refuses,breaks,energy_growth_J,wall_s");
+    const bool q = false;  // the rig is cheap: the quick study draws the full maps too
+    (void)opt;
+    // Map 1: step size x stiffness, every method.
+    const std::vector<uint32_t> substeps = q ? std::vector<uint32_t>{2, 8, 32} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32, 64};
+    const std::vector<double> stiffness =
+        q ? std::vector<double>{1e9, 1e11, 1e13} : std::vector<double>{1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14};
+    std::vector<std::string> ms;
+    for (const Method& m : methods())
+        if (!q || std::string(m.name) == "plain" || std::string(m.name) == "energized") ms.push_back(m.name);
+    spdlog::info("study: stability map h x stiffness");
+    for (const std::string& m : ms)
+        for (uint32_t s : substeps)
+            for (double k : stiffness) {
+                RigSettings r;
+                r.substeps = s;
+                r.stiffness = k;
+                StudyCase c = rig_case(r);
+                apply_method(m, c.input);
+                const Cell cell = run_cell(c);
+                row(csv, "step_stiffness", m, "h_s", 1.0 / (r.fps * s), "stiffness_N_m3", k, cell);
+                if (!cell.guard_refuses && m == "plain") h.cells_plain++, h.stable_plain += cell.cls == Stability::Stable;
+                if (!cell.guard_refuses && m == "energized")
+                    h.cells_energized++, h.stable_energized += cell.cls == Stability::Stable;
+            }
+    // Map 2: mass ratio x alpha.
+    const std::vector<double> ratios = q ? std::vector<double>{0.01, 1, 100} : std::vector<double>{1e-3, 1e-2, 0.1, 1, 10, 100, 1e3};
+    const std::vector<double> alphas = q ? std::vector<double>{0, 1, 10} : std::vector<double>{0, 0.5, 1, 2, 5, 10, 100};
+    std::vector<std::string> ms2 = q ? std::vector<std::string>{"energized"}
+                                     : std::vector<std::string>{"energized", "paper", "opposed", "rate_limit", "rollback"};
+    spdlog::info("study: stability map mass ratio x alpha");
+    std::map<std::pair<std::string, std::pair<double, double>>, Stability> cls;
+    for (const std::string& m : ms2)
+        for (double ratio : ratios)
+            for (double a : alphas) {
+                RigSettings r;
+                r.mass_ratio = ratio;
+                r.alpha = a;
+                StudyCase c = rig_case(r);
+                apply_method(m, c.input);
+                c.input.material.alpha = a;
+                const Cell cell = run_cell(c);
+                cls[{m, {ratio, a}}] = cell.cls;
+                row(csv, "mass_alpha", m, "mass_ratio", ratio, "alpha", a, cell);
+            }
+    for (double ratio : ratios)
+        for (double a : alphas) {
+            if (cls[{"energized", {ratio, 0.0}}] != Stability::Stable) continue;  // plain breaking fails here too
+            if (cls[{"energized", {ratio, a}}] == Stability::Stable) continue;
+            h.energized_fails++;
+            h.guard_rescues += cls[{"rate_limit", {ratio, a}}] == Stability::Stable;
+        }
+    // Map 3: alpha x rate limit (energized).
+    if (!q) {
+        spdlog::info("study: stability map alpha x rate limit");
+        for (double rate : {0.0, 0.01, 0.03, 0.1, 0.3})
+            for (double a : alphas) {
+                RigSettings r;
+                r.alpha = a;
+                StudyCase c = rig_case(r);
+                apply_method("energized", c.input);
+                c.input.material.alpha = a;
+                c.input.simulate.rate_limit = rate;
+                row(csv, "alpha_rate", "energized", "alpha", a, "rate_limit_s", rate, run_cell(c));
+            }
+    }
+    csv.close();
+    return true;
+}
+
+}  // namespace shatter::study

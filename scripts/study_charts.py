@@ -1,0 +1,298 @@
+#!/usr/bin/python3
+"""Charts of the accuracy and cost study (docs/accuracy.md) from the CSV files of bench/study.
+
+    /usr/bin/python3 scripts/study_charts.py [RESULTS_DIR] [IMAGES_DIR]
+
+Defaults: bench/results/study and docs/images. Writes study-*.png (small PNGs) and prints the
+markdown tables docs/accuracy.md quotes. Needs Debian's matplotlib (python3-matplotlib).
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.colors import ListedColormap  # noqa: E402
+
+RESULTS = sys.argv[1] if len(sys.argv) > 1 else "bench/results/study"
+IMAGES = sys.argv[2] if len(sys.argv) > 2 else "docs/images"
+DPI = 80
+
+
+def read(name):
+    path = os.path.join(RESULTS, name)
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def num(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def yes(x):
+    return str(x).strip().lower() in ("1", "true")
+
+
+def save(fig, name):
+    os.makedirs(IMAGES, exist_ok=True)
+    fig.savefig(os.path.join(IMAGES, name), dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    print(f"wrote {os.path.join(IMAGES, name)}", file=sys.stderr)
+
+
+def knee(points):
+    """The cheapest point whose error is within 2x of the smallest error on the curve."""
+    ok = [p for p in points if math.isfinite(p[1]) and p[1] >= 0]
+    if not ok:
+        return None
+    best = min(p[1] for p in ok)
+    good = [p for p in ok if p[1] <= 2 * max(best, 1e-9)]
+    return min(good, key=lambda p: p[0])
+
+
+KNOB_STYLE = {
+    "substeps": ("C0", "o"),
+    "iterations": ("C1", "s"),
+    "constraints_per_side": ("C2", "^"),
+    "constraints_per_pair": ("C2", "^"),
+    "collision_parts": ("C4", "D"),
+    "resolution": ("C5", "v"),
+    "rollback": ("C3", "P"),
+}
+FLOOR_MM = 1e-4  # errors below this are drawn at it (log scale)
+
+
+def cost_error():
+    rows = read("sweeps_double.csv") + read("sweeps_float.csv")
+    scenes = [s for s in ["rig", "beam", "plate", "chain", "bunny"] if any(r["scene"] == s for r in rows)]
+    if not scenes:
+        return
+    knees = []
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 3.6), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        ref = [r for r in rows if r["scene"] == scene and r["knob"] == "reference"]
+        for precision in ["double", "float"]:
+            sr = [r for r in rows if r["scene"] == scene and r["precision"] == precision and r["knob"] != "reference"]
+            for knob in dict.fromkeys(r["knob"] for r in sr):
+                kr = [r for r in sr if r["knob"] == knob and not yes(r["refused"])]
+                pts = sorted(
+                    (num(r["wall_per_sim_s"]), num(r["trajectory_error_m"]) * 1e3, r["value"], yes(r["is_default"]))
+                    for r in kr
+                )
+                if not pts:
+                    continue
+                colour, marker = KNOB_STYLE.get(knob, ("C7", "x"))
+                style = "-" if precision == "double" else ":"
+                label = knob.replace("_", " ") + (" (float)" if precision == "float" else "")
+                ys = [max(p[1], FLOOR_MM) if math.isfinite(p[1]) else math.nan for p in pts]
+                ax.plot([p[0] for p in pts], ys, style, color=colour, marker=marker, ms=4, label=label)
+                for p, y in zip(pts, ys):
+                    if knob in ("substeps", "iterations", "rollback") or precision == "double":
+                        ax.annotate(f"{float(p[2]):g}", (p[0], y), fontsize=6, xytext=(2, 2), textcoords="offset points")
+                    if p[3] and precision == "double":
+                        ax.plot([p[0]], [y], "*", color="k", ms=11, zorder=5)
+                if precision == "double":
+                    k = knee(pts)
+                    if k:
+                        ax.plot([k[0]], [max(k[1], FLOOR_MM)], "o", mfc="none", mec="r", ms=12, mew=1.5, zorder=6)
+                        knees.append((scene, knob, k[2], k[0], k[1]))
+        if ref:
+            ax.axvline(num(ref[0]["wall_per_sim_s"]), color="0.6", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(scene)
+        ax.set_xlabel("wall s per simulated s")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0][0].set_ylabel("mean trajectory error (mm)")
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+    if not labels:
+        return
+    fig.legend(handles, labels, loc="lower center", ncol=min(8, len(labels)), fontsize=8, bbox_to_anchor=(0.5, -0.14))
+    fig.suptitle("Cost against error, one knob at a time (star: study default; red ring: knee; dashed: reference)",
+                 fontsize=10)
+    save(fig, "study-cost-error.png")
+    print("\n| scene | knob | knee value | wall s per sim s | error (mm) |\n| --- | --- | --- | --- | --- |")
+    for scene, knob, value, cost, err in knees:
+        print(f"| {scene} | {knob} | {float(value):g} | {cost:.3g} | {err:.3g} |")
+
+
+def first_break():
+    rows = [r for r in read("sweeps_double.csv") if r["knob"] in ("substeps", "iterations") and not yes(r["refused"])]
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    if not scenes:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    for ax, knob in zip(axes, ["substeps", "iterations"]):
+        for i, scene in enumerate(scenes):
+            kr = [r for r in rows if r["scene"] == scene and r["knob"] == knob]
+            pts = sorted((num(r["value"]), num(r["first_break_error_s"]) * 1e3) for r in kr)
+            pts = [(x, max(y, 1e-2)) for x, y in pts if math.isfinite(y)]
+            if pts:
+                ax.plot(*zip(*pts), "-o", ms=3, color=f"C{i}", label=scene)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(knob)
+        ax.set_ylabel("|first break - reference| (ms)")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Time of the first break against the reference (drawn at >= 0.01 ms; missing: no break)", fontsize=10)
+    save(fig, "study-first-break.png")
+
+
+def identities():
+    rows = [r for r in read("identities_double.csv") + read("identities_float.csv") if r["measure"] == "stiffness"]
+    if not rows:
+        return
+    stiffs = sorted({r["stiffness"] for r in rows}, key=float)
+    fig, axes = plt.subplots(1, len(stiffs), figsize=(4.5 * len(stiffs), 3.4), squeeze=False)
+    for ax, k in zip(axes[0], stiffs):
+        for precision, style in [("double", "-"), ("float", ":")]:
+            for i, sub in enumerate(sorted({r["substeps"] for r in rows}, key=int)):
+                kr = [r for r in rows if r["stiffness"] == k and r["substeps"] == sub and r["precision"] == precision]
+                pts = sorted((num(r["iterations"]), max(abs(num(r["error"])), 1e-16)) for r in kr)
+                pts = [p for p in pts if math.isfinite(p[1])]
+                if pts:
+                    ax.plot(*zip(*pts), style, marker="o", ms=3, color=f"C{i}", label=f"{sub} substeps, {precision}")
+        ax.axhline(1e-6, color="r", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(f"stiffness {float(k):g} N/m^3")
+        ax.set_xlabel("solver iterations")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0][0].set_ylabel("|k measured / k - 1|")
+    axes[0][-1].legend(fontsize=7)
+    fig.suptitle("Stiffness identity: a bar pulled along its axis by gravity (red: the 1e-6 check)", fontsize=10)
+    save(fig, "study-stiffness.png")
+
+
+CLASSES = ["stable", "refused", "nan", "energy_growth", "cascade", "fly_apart"]
+COLOURS = ["#4caf50", "#bdbdbd", "#212121", "#e53935", "#fb8c00", "#8e24aa"]
+
+
+def stability():
+    rows = read("stability.csv")
+    for m in dict.fromkeys(r["map"] for r in rows):
+        mr = [r for r in rows if r["map"] == m]
+        methods = list(dict.fromkeys(r["method"] for r in mr))
+        xs = sorted({num(r["x"]) for r in mr})
+        ys = sorted({num(r["y"]) for r in mr})
+        n = len(methods)
+        cols = min(n, 4)
+        nrows = (n + cols - 1) // cols
+        fig, axes = plt.subplots(nrows, cols, figsize=(3.3 * cols, 3.0 * nrows), squeeze=False)
+        cmap = ListedColormap(COLOURS)
+        for ax in axes.flat[n:]:
+            ax.axis("off")
+        for ax, method in zip(axes.flat, methods):
+            grid = [[math.nan] * len(xs) for _ in ys]
+            for r in mr:
+                if r["method"] != method:
+                    continue
+                i, j = ys.index(num(r["y"])), xs.index(num(r["x"]))
+                grid[i][j] = CLASSES.index(r["class"])
+                if yes(r["guard_refuses"]):
+                    ax.plot(j, i, "x", color="k", ms=5, mew=0.8)
+            ax.imshow(grid, cmap=cmap, vmin=-0.5, vmax=len(CLASSES) - 0.5, origin="lower", aspect="auto")
+            ax.set_xticks(range(len(xs)))
+            ax.set_xticklabels([f"{x:.3g}" for x in xs], fontsize=6, rotation=45)
+            ax.set_yticks(range(len(ys)))
+            ax.set_yticklabels([f"{y:g}" for y in ys], fontsize=6)
+            ax.set_title(method, fontsize=9)
+            ax.set_xlabel(mr[0]["x_name"], fontsize=7)
+            ax.set_ylabel(mr[0]["y_name"], fontsize=7)
+        handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in COLOURS]
+        fig.legend(handles, CLASSES, loc="lower center", ncol=len(CLASSES), fontsize=8, bbox_to_anchor=(0.5, -0.04))
+        fig.suptitle(f"Stability map '{m}' on the rig (x: the CFM guard refuses; the cell shows the run without it)",
+                     fontsize=9)
+        fig.tight_layout()
+        save(fig, f"study-stability-{m.replace('_', '-')}.png")
+        print(f"\nstability {m}: " + "; ".join(
+            f"{meth}: " + ", ".join(f"{c} {sum(1 for r in mr if r['method'] == meth and r['class'] == c)}"
+                                    for c in CLASSES if any(r['method'] == meth and r['class'] == c for r in mr))
+            for meth in methods))
+
+
+def methods():
+    rows = read("methods.csv")
+    if not rows:
+        return
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    names = list(dict.fromkeys(r["method"] for r in rows))
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
+    width = 0.8 / len(names)
+    for k, name in enumerate(names):
+        xs = [i + (k - len(names) / 2 + 0.5) * width for i in range(len(scenes))]
+        get = lambda col: [num(next((r[col] for r in rows if r["scene"] == s and r["method"] == name), "nan"))
+                           for s in scenes]
+        walls = get("wall_per_sim_s")
+        plain = [num(next(r["wall_per_sim_s"] for r in rows if r["scene"] == s and r["method"] == "plain"))
+                 for s in scenes]
+        axes[0].bar(xs, [w / p for w, p in zip(walls, plain)], width, label=name, color=f"C{k}")
+        axes[1].bar(xs, [b * 100 for b in get("books_error")], width, color=f"C{k}")
+        axes[2].bar(xs, [d * 1e3 for d in get("difference_from_plain_m")], width, color=f"C{k}")
+    titles = ["wall time relative to plain", "injected - alpha E, % of alpha E", "mean distance from plain (mm)"]
+    for ax, t in zip(axes, titles):
+        ax.set_xticks(range(len(scenes)))
+        ax.set_xticklabels(scenes)
+        ax.set_title(t, fontsize=9)
+        ax.grid(alpha=0.3, axis="y", lw=0.4)
+    axes[2].set_yscale("symlog", linthresh=0.1)
+    fig.legend(loc="lower center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, -0.08))
+    save(fig, "study-methods.png")
+    print("\n| scene | method | wall s / sim s | breaks | first break (s) | stored E (J) | injected (J) | "
+          "injected - alpha E | fragments | KE +0.1 s (J) | from plain (mm) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in rows:
+        print(f"| {r['scene']} | {r['method']} | {num(r['wall_per_sim_s']):.3g} | {r['breaks']} | "
+              f"{num(r['first_break_s']):.4g} | {num(r['stored_J']):.3g} | {num(r['injected_J']):.3g} | "
+              f"{100 * num(r['books_error']):+.3g}% | {r['fragments']} | {num(r['kinetic_0.1s_after_J']):.3g} | "
+              f"{1e3 * num(r['difference_from_plain_m']):.3g} |")
+
+
+def tables():
+    rows = read("speed.csv")
+    if rows:
+        print("\n| scene | bodies | constraints | prescore (s) | simulate (s / sim s) | energize (s / sim s) | "
+              "render (s / sim s) | total (s / sim s) |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+        for r in rows:
+            print(f"| {r['scene']} | {r['bodies']} | {r['constraints']} | {num(r['prescore_s']):.3g} | "
+                  f"{num(r['simulate_per_sim_s']):.3g} | {num(r['energize_per_sim_s']):.2g} | "
+                  f"{num(r['render_per_sim_s']):.3g} | {num(r['total_per_sim_s']):.3g} |")
+    rows = read("continuum.csv")
+    if rows:
+        print("\n| iterations | first break (s) | M (N m) | stored at break (J) | Euler-Bernoulli (J) | ratio | "
+              "simulate (s) | Euler-Bernoulli (s) |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+        for r in rows:
+            print(f"| {r['iterations']} | {num(r['first_break_s']):.4g} | {num(r['moment_Nm']):.4g} | "
+                  f"{num(r['stored_J']):.4g} | {num(r['euler_bernoulli_J']):.4g} | {num(r['ratio']):.3g} | "
+                  f"{num(r['wall_s']):.3g} | {num(r['euler_bernoulli_s']):.2g} |")
+    rows = read("identities_double.csv") + read("identities_float.csv")
+    energy = [r for r in rows if r["measure"] == "energy"]
+    if energy:
+        print("\n| precision | method | max per-break energy identity error |\n| --- | --- | --- |")
+        for r in energy:
+            print(f"| {r['precision']} | {r['method']} | {num(r['error']):.3g} |")
+
+
+if __name__ == "__main__":
+    cost_error()
+    first_break()
+    identities()
+    stability()
+    methods()
+    tables()

@@ -1,0 +1,37 @@
+// libFuzzer target: mesh loading as prescore does it (prescore/prescore.cpp): assimp reads the
+// file with its extension as the format hint (load_mesh), then the mesh checks (topology,
+// degeneracies, CGAL self-intersections, volume), orientation and the Mesh_3 admission test.
+// Mesh_3 itself is not run (seconds per input).
+//
+// Input: byte 0 picks the format (the extension of the scratch file), the rest is the file.
+// Seeds: tests/fuzz/corpus/mesh/ are mesh files with that byte in front.
+#include <string>
+#include <string_view>
+
+#include "prescore/mesh_check.h"
+#include "prescore/mesh_load.h"
+#include "tests/fuzz/fuzz_support.h"
+
+namespace {
+// The formats the README promises (assimp reads more; these are the ones users are told about).
+const char* const kExtensions[] = {"obj", "ply", "stl", "off", "glb", "gltf", "3ds", "fbx"};
+constexpr size_t kFormats = sizeof(kExtensions) / sizeof(kExtensions[0]);
+// Self-intersection search is O(n log n) with a large constant; bounded so an iteration stays fast.
+constexpr size_t kMaxCheckedTriangles = 20000;
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size < 1) return 0;
+    const std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
+    const std::string path = shatter::fuzz::scratch_file(bytes, kExtensions[data[0] % kFormats]);
+    shatter::fuzz::expect_value_or_error([&] {
+        shatter::TriangleMesh mesh = shatter::load_mesh(path, 1.0);
+        if (mesh.triangles.size() > kMaxCheckedTriangles) return;
+        const shatter::MeshCheck check = shatter::check_mesh(mesh);
+        shatter::describe(check);
+        if (check.closed() && check.volume < 0) shatter::orient_outward(mesh);
+        std::string why;
+        shatter::can_tetrahedralize(shatter::check_mesh(mesh, false), &why);
+    });
+    return 0;
+}
