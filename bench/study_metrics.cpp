@@ -118,21 +118,7 @@ double first_break(const SimulationResult& r) {
     return r.breaks.empty() ? std::numeric_limits<double>::quiet_NaN() : r.breaks.front().time;
 }
 
-size_t fragments(const Model& model, const SimulationResult& r) {
-    std::vector<uint32_t> parent(model.pieces.size());
-    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-    auto find = [&](uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    std::vector<char> broken(model.constraints.size(), 0);
-    for (const BreakRecord& b : r.breaks) broken[b.constraint] = 1;
-    for (size_t c = 0; c < model.constraints.size(); ++c)
-        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
-    size_t n = 0;
-    for (uint32_t p = 0; p < parent.size(); ++p) n += find(p) == p;
-    return n;
-}
+size_t fragments(const Model& model, const SimulationResult& r) { return count_fragments(model, r.breaks); }
 
 double energy_identity_error(const SimulationResult& r, bool per_body) {
     double worst = 0;

@@ -65,4 +65,8 @@ struct Model {
     std::vector<Constraint> constraints;  // sorted by (piece_a, piece_b, vertex)
 };
 
+// How many groups of pieces the constraints that are not `broken` (one flag per constraint) still
+// hold together: the fragments. Pieces joined to nothing count one each.
+size_t count_fragments(const Model& model, const std::vector<bool>& broken);
+
 }  // namespace shatter

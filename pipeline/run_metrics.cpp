@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -37,11 +35,8 @@ double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
 }  // namespace
 
 nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& traj, const std::string& breaks_jsonl,
-                      const std::string& energy_csv_text) {
+                                        const std::string& energy_csv_text) {
     // Breaks: count, energies, and which constraints are gone.
-    std::vector<uint32_t> parent(model.pieces.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    std::function<uint32_t(uint32_t)> find = [&](uint32_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
     std::vector<bool> broken(model.constraints.size(), false);
     size_t breaks = 0;
     double stored = 0, injected = 0, first_break = -1;
@@ -64,10 +59,7 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
                               "simulate again (shatter run --force --stages simulate)");
         }
     }
-    for (size_t c = 0; c < model.constraints.size(); ++c)
-        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
-    size_t fragments = 0;
-    for (uint32_t i = 0; i < parent.size(); ++i) fragments += find(i) == i;
+    const size_t fragments = count_fragments(model, broken);
 
     // Kinetic energy 0.1 s after the first break, from the energy books.
     std::optional<double> kinetic_after;

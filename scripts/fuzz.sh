@@ -18,7 +18,7 @@ TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=(mesh shot batch model trajectory logs png); fi
 
 bash scripts/install-deps.sh > /dev/null
-bash scripts/install-fuzz-deps.sh > /dev/null
+bash scripts/install-deps.sh --fuzz > /dev/null
 if [ ! -f "$BUILD_DIR/build.ninja" ]; then
   CC=clang CXX=clang++ cmake -S tests/fuzz -B "$BUILD_DIR" -G Ninja > "$BUILD_DIR.configure.log" 2>&1 \
     || { cat "$BUILD_DIR.configure.log"; exit 1; }

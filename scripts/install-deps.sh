@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian package shatter needs to build, test and run. Idempotent: packages
 # already present are skipped, and apt is only called (once) when something is missing.
+#   scripts/install-deps.sh          what `make demo` and `make test` need
+#   scripts/install-deps.sh --fuzz   also clang, libFuzzer and llvm-symbolizer (`make fuzz`)
 set -euo pipefail
 
 PACKAGES=(
@@ -22,6 +24,10 @@ PACKAGES=(
   # (tested against a single-node cluster on loopback)
   ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
 )
+
+if [ "${1:-}" = "--fuzz" ]; then
+  PACKAGES=(clang libclang-rt-14-dev llvm)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

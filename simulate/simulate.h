@@ -69,6 +69,13 @@ struct SimulationResult {
 // on_instability = clamp, runaway energy is clamped instead (SimulationResult::clamps).
 SimulationResult simulate(const Model& model, const SimulationInput& input, const std::string& model_id);
 
+// The fragments left after `breaks` (core/model.h count_fragments).
+inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>& breaks) {
+    std::vector<bool> broken(model.constraints.size(), false);
+    for (const BreakRecord& b : breaks) broken[b.constraint] = true;
+    return count_fragments(model, broken);
+}
+
 // Where the frames go: frame count for duration and fps (frame 0 at t = 0 included).
 uint32_t frame_count(const SimulateSettings& s);
 

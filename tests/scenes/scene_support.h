@@ -31,21 +31,7 @@ inline double kinetic_at(const SimulationResult& r, double t) {
 }
 
 // The pieces that unbroken constraints still hold together: the number of connected groups.
-inline size_t fragments(const Model& model, const SimulationResult& r) {
-    std::vector<uint32_t> parent(model.pieces.size());
-    std::iota(parent.begin(), parent.end(), 0u);
-    auto find = [&](uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    std::vector<char> broken(model.constraints.size(), 0);
-    for (const BreakRecord& b : r.breaks) broken[b.constraint] = 1;
-    for (size_t c = 0; c < model.constraints.size(); ++c)
-        if (!broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
-    size_t groups = 0;
-    for (uint32_t p = 0; p < parent.size(); ++p) groups += find(p) == p;
-    return groups;
-}
+inline size_t fragments(const Model& model, const SimulationResult& r) { return count_fragments(model, r.breaks); }
 
 inline Vec3 position(const SimulationResult& r, uint32_t frame, uint32_t body) {
     return r.trajectory.pose(frame, body).position.cast<double>();
