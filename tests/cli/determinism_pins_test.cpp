@@ -1,0 +1,78 @@
+// Determinism as a contract: every built-in scene, run briefly at a small size, must give the
+// same model, trajectory and frame bytes as pinned in tests/pins/scenes.txt (FNV-1a 64), the way
+// physics engines pin their determinism. Any change of those bytes, intended or not, fails here.
+//
+// After an intended change (a new default, a physics fix), re-pin with
+//   SHATTER_UPDATE_PINS=1 build/tests/cli_tests --gtest_filter='DeterminismPins.*'
+// and say in the commit message why the bytes changed.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/binary_io.h"
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::run_shatter;
+using testing_support::slurp;
+using testing_support::TempDir;
+
+const std::string kPins = SHATTER_SOURCE_DIR "/tests/pins/scenes.txt";
+const char* kScenes[] = {"bunny", "bunny_sphere", "beam", "plate", "chain"};
+constexpr uint32_t kFrame = 4;  // the pinned frame (of 7: 0.2 s at 30 fps)
+
+std::map<std::string, std::string> read_pins() {
+    std::map<std::string, std::string> pins;
+    std::istringstream in(slurp(kPins));
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        const size_t space = line.find(' ');
+        pins[line.substr(0, space)] = line.substr(space + 1);
+    }
+    return pins;
+}
+
+std::string hash_of(const std::string& path) { return fmt::format("{:016x}", fnv1a64(slurp(path))); }
+
+TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
+    TempDir dir;
+    std::map<std::string, std::string> got;
+    for (const char* scene : kScenes) {
+        const std::string out = dir.file(scene);
+        auto r = run_shatter({"run", std::string(SHATTER_SOURCE_DIR "/assets/") + scene + ".toml", "-o", out,
+                              "--no-progress", "--stages", "prescore,simulate,render", "--set", "simulate.duration=0.2",
+                              "--set", "render.width=160", "--set", "render.height=90", "--set", "render.shadow_map=512"});
+        ASSERT_EQ(r.exit_code, 0) << scene << ": " << r.err;
+        got[std::string(scene) + ".model"] = hash_of(fmt::format("{}/{}.model", out, scene));
+        got[std::string(scene) + ".traj"] = hash_of(fmt::format("{}/{}.traj", out, scene));
+        got[std::string(scene) + ".frame"] = hash_of(fmt::format("{}/frames/frame_{:05d}.png", out, kFrame));
+    }
+    if (std::getenv("SHATTER_UPDATE_PINS")) {
+        fs::create_directories(fs::path(kPins).parent_path());
+        std::ofstream pins(kPins);
+        pins << "# FNV-1a 64 of each built-in scene's model, trajectory and frame " << kFrame
+             << " (0.2 s, 160x90): tests/cli/determinism_pins_test.cpp\n";
+        for (const auto& [name, hash] : got) pins << name << ' ' << hash << '\n';
+        GTEST_SKIP() << "pins rewritten: " << kPins;
+    }
+    const auto pins = read_pins();
+    ASSERT_EQ(pins.size(), got.size()) << "re-pin with SHATTER_UPDATE_PINS=1 (see the file's comment)";
+    for (const auto& [name, hash] : got) {
+        const auto it = pins.find(name);
+        ASSERT_NE(it, pins.end()) << name << " is not pinned";
+        EXPECT_EQ(it->second, hash) << name << ": the bytes changed. If intended, re-pin with SHATTER_UPDATE_PINS=1";
+    }
+}
+
+}  // namespace
+}  // namespace shatter
