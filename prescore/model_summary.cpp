@@ -20,6 +20,7 @@ nlohmann::ordered_json model_summary(const Model& m) {
         for (uint32_t t : p.tets) mask[t] = 1;
         int32_t components = 0;
         tet_components(topo, mask, &components);
+        if (p.tets.empty()) components = p.connected ? 1 : 0;  // a generated box: one solid, no tets
         size_t fracture = 0;
         for (FaceKind k : p.surface.kinds) fracture += k == FaceKind::Fracture;
         double hull = 0;
