@@ -27,7 +27,7 @@ struct SimulateFlags {
     std::optional<double> alpha, stiffness, damping, strength, duration, fps, rate_limit;
     std::optional<uint32_t> substeps, iterations;
     std::optional<uint64_t> seed;
-    std::optional<std::string> energy_split, directions;
+    std::optional<std::string> energy_split, directions, on_instability;
     bool rollback = false;
     bool exact_energy = false;
 };
@@ -54,6 +54,8 @@ SimulationInput input_from(const SimulateFlags& f) {
         in.simulate.energy_split = *f.energy_split == "per_body" ? EnergySplitMode::PerBody : EnergySplitMode::Total;
     if (f.directions)
         in.simulate.directions = *f.directions == "opposed" ? KickDirectionMode::Opposed : KickDirectionMode::Paper;
+    if (f.on_instability)
+        in.simulate.on_instability = *f.on_instability == "clamp" ? InstabilityMode::Clamp : InstabilityMode::Stop;
     return in;
 }
 
@@ -140,6 +142,11 @@ RunCommand add_simulate_command(CLI::App& root) {
                   option_help("paper: each body kicked along -(torque x force); opposed: equal and opposite kicks that "
                               "conserve momentum", "", to_string(s.directions)))
         ->check(CLI::IsMember({"paper", "opposed"}));
+    c->add_option("--on-instability", f->on_instability,
+                  option_help("when the kinetic energy runs away (beyond what the scene supplies + 10%): stop (keep the "
+                              "frames before, marked incomplete, exit 5) or clamp (scale the speeds down and go on; a NaN "
+                              "still stops)", "", to_string(s.on_instability)))
+        ->check(CLI::IsMember({"stop", "clamp"}));
     c->add_option("--seed", f->seed, option_help("seed of random kick directions", "", std::to_string(s.seed)));
     return [f] { return run(*f); };
 }

@@ -61,6 +61,18 @@ TEST(SimulateCommand, AlphaFlagOverridesTheShot) {
     EXPECT_EQ(run_shatter({"simulate", kFixture, "--shot", shot}).exit_code, 3);  // duplicate table: file:line error
 }
 
+TEST(SimulateCommand, OnInstabilityFlagOverridesTheShotAndIsRecorded) {
+    TempDir dir;
+    const std::string shot = dir.write("s.toml", "[material]\nstiffness = 1e12\n[simulate]\nduration = 0.1\n");
+    auto r = run_shatter({"simulate", kFixture, "--shot", shot, "--on-instability", "clamp", "-o", dir.file("c.traj")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(slurp(dir.file("c.traj")).find("\"on_instability\":\"clamp\""), std::string::npos);
+    r = run_shatter({"simulate", kFixture, "--shot", shot, "-o", dir.file("s.traj")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(slurp(dir.file("s.traj")).find("on_instability"), std::string::npos);  // the default keeps old bytes
+    EXPECT_EQ(run_shatter({"simulate", kFixture, "--on-instability", "ignore"}).exit_code, 2);
+}
+
 struct BadCase {
     const char* name;
     std::string shot;                 // "" = no shot
