@@ -26,13 +26,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string own_executable() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw Error(ExitCode::Internal, "cannot find the shatter executable (/proc/self/exe)");
-    return p.string();
-}
-
 // The last line of a run's console that says what went wrong.
 std::string last_error_line(const std::string& console) {
     std::string text;

@@ -117,6 +117,13 @@ ssize_t write_no_sigpipe(int fd, const char* data, size_t size) {
 
 }  // namespace
 
+std::string own_executable() {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec) throw Error(ExitCode::Internal, "cannot find the shatter executable (/proc/self/exe)");
+    return p.string();
+}
+
 std::optional<std::string> find_program(const std::string& name) {
     if (name.empty()) return std::nullopt;
     if (name.find('/') != std::string::npos)

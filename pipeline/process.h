@@ -14,6 +14,10 @@ namespace shatter {
 // executable); nullopt when not found.
 std::optional<std::string> find_program(const std::string& name);
 
+// The path of the running `shatter` (/proc/self/exe), for starting more of it: batch workers,
+// cluster jobs.
+std::string own_executable();
+
 // For messages: argv as one could paste it into a shell, each argument single-quoted.
 std::string command_line(const std::vector<std::string>& argv);
 

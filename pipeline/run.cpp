@@ -65,6 +65,10 @@ const char* to_string(StageOutcome outcome) {
     return "?";
 }
 
+std::pair<uint32_t, uint32_t> chunk_frames(uint32_t frames, uint32_t chunk, uint32_t chunks) {
+    return {uint32_t(uint64_t(frames) * chunk / chunks), uint32_t(uint64_t(frames) * (chunk + 1) / chunks)};
+}
+
 std::string default_output_dir(const std::string& shot) {
     return (fs::path("out") / fs::path(shot).stem()).string();
 }
@@ -96,10 +100,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The frames of chunk `chunk` of `chunks` equal ranges of [0, frames).
-FrameRange chunk_range(uint32_t frames, uint32_t chunk, uint32_t chunks) {
-    return {uint32_t(uint64_t(frames) * chunk / chunks), uint32_t(uint64_t(frames) * (chunk + 1) / chunks)};
-}
 
 class Runner {
 public:
@@ -349,7 +349,8 @@ private:
             ro.progress = options_.progress;
             ro.skip_existing = true;
             ro.size_source = options_.shot + ": [render] width, height";
-            const FrameRange range = chunk_range(trajectory().frames(), options_.chunk, options_.chunks);
+            const auto [first, end] = chunk_frames(trajectory().frames(), options_.chunk, options_.chunks);
+            const FrameRange range{first, end};
             if (range.first < range.end) {
                 const RenderReport rr = render_frames(scene, shot_.render, range, frames_dir(), ro);
                 spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first,

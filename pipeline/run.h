@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -56,6 +57,10 @@ struct RunResult {
     nlohmann::ordered_json summary;     // what summary.json holds (empty until simulate has run)
     int exit_code = 0;                  // 0, or the exit code of the first failure (core/error.h)
 };
+
+// The frames `--chunk chunk/chunks` renders: the chunk-th of `chunks` equal ranges of [0, frames),
+// as [first, end).
+std::pair<uint32_t, uint32_t> chunk_frames(uint32_t frames, uint32_t chunk, uint32_t chunks);
 
 // out/NAME for a shot file path.
 std::string default_output_dir(const std::string& shot);

@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/shot.h"
+#include "pipeline/process.h"
 #include "simulate/simulate.h"
 
 namespace shatter {
@@ -41,13 +42,6 @@ exec "$@"
 )sh";
 
 constexpr int kJobsFormatVersion = 1;
-
-std::string own_executable() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) throw Error(ExitCode::Internal, "cannot find the shatter executable (/proc/self/exe)");
-    return p.string();
-}
 
 std::string absolute(const std::string& path) { return path.empty() ? path : fs::absolute(path).lexically_normal().string(); }
 

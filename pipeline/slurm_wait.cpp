@@ -12,17 +12,12 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "pipeline/process.h"
+#include "pipeline/run.h"
 #include "pipeline/slurm_submit.h"
 
 namespace shatter {
 
 namespace {
-
-// The frames of render task `task` of `tasks`: the ranges `shatter run --chunk` renders
-// (chunk_range in pipeline/run.cpp).
-std::pair<uint32_t, uint32_t> task_frames(uint32_t frames, uint32_t task, uint32_t tasks) {
-    return {uint32_t(uint64_t(frames) * task / tasks), uint32_t(uint64_t(frames) * (task + 1) / tasks)};
-}
 
 // One thing squeue reports on: a plain job, or one task of an array.
 struct Unit {
@@ -37,7 +32,7 @@ struct Unit {
         const std::string prefix = job->label.empty() ? "" : fmt::format("{}: ", job->label);
         if (job->kind == "simulate") return fmt::format("{}prescore/simulate job {}", prefix, job->id);
         if (!task) return fmt::format("{}{} job {}", prefix, job->kind, job->id);
-        const auto [first, end] = task_frames(job->frames, *task, job->tasks);
+        const auto [first, end] = chunk_frames(job->frames, *task, job->tasks);
         const std::string frames = end > first ? fmt::format(" (frames {}..{})", first, end - 1) : " (no frames)";
         return fmt::format("{}{} task {} of job {}{}", prefix, job->kind, *task, job->id, frames);
     }
