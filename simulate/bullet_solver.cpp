@@ -1,0 +1,182 @@
+#include "simulate/bullet_solver.h"
+
+namespace shatter {
+
+namespace {
+
+// How far ahead (in constraints) the set-up and write-back loops ask for memory.
+constexpr int kPrefetchConstraints = 4;
+
+// The cache lines of a point constraint that set-up and write-back read or write: the typed
+// constraint's header (applied impulse, feedback pointer, bodies, enabled flag), the pivots and
+// settings at the end of btPoint2PointConstraint, and the derived class's own members (the
+// spring and the feedback).
+void prefetch_constraint(const btTypedConstraint* c) {
+    const char* p = reinterpret_cast<const char*>(c);
+    for (int line = 0; line < 2; ++line) __builtin_prefetch(p + 64 * line, 1);
+    for (int line = 9; line < 14; ++line) __builtin_prefetch(p + 64 * line, 1);
+}
+
+void prefetch_body(const btRigidBody& b) {
+    const char* p = reinterpret_cast<const char*>(&b);
+    for (int line = 0; line < 21; line += 2) __builtin_prefetch(p + 64 * line, 0);
+}
+
+}  // namespace
+
+// A row's impulse update, clamped to [lower, upper] (or only below, for contacts), applied to both
+// bodies' velocity changes; returns the change over the row's effective mass (the residual).
+__attribute__((always_inline)) inline btScalar PieceSolver::solve_row(btSolverConstraint& c, bool upper_limit) {
+    btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+    btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+    const btScalar va = c.m_contactNormal1.dot(a.internalGetDeltaLinearVelocity()) +
+                        c.m_relpos1CrossNormal.dot(a.internalGetDeltaAngularVelocity());
+    const btScalar vb = c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) +
+                        c.m_relpos2CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+    delta -= va * c.m_jacDiagABInv;
+    delta -= vb * c.m_jacDiagABInv;
+    const btScalar sum = btScalar(c.m_appliedImpulse) + delta;
+    if (sum < c.m_lowerLimit) {
+        delta = c.m_lowerLimit - c.m_appliedImpulse;
+        c.m_appliedImpulse = c.m_lowerLimit;
+    } else if (upper_limit && sum > c.m_upperLimit) {
+        delta = c.m_upperLimit - c.m_appliedImpulse;
+        c.m_appliedImpulse = c.m_upperLimit;
+    } else {
+        c.m_appliedImpulse = sum;
+    }
+    a.internalApplyImpulse(c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
+    b.internalApplyImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
+    return delta * (1. / c.m_jacDiagABInv);
+}
+
+// One projected Gauss-Seidel pass, as btSequentialImpulseConstraintSolver::solveSingleIteration
+// does it without SOLVER_RANDMIZE_ORDER and SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS
+// (Bullet's defaults, and ours): the joint rows, then (within the contact iterations) the
+// contact rows, their friction rows bounded by the contact's impulse, and rolling friction. The
+// row updates are Bullet's scalar ones, written here so that they inline into the loops; the
+// other modes go to Bullet's own pass.
+btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                           btPersistentManifold** manifolds, int numManifolds,
+                                           btTypedConstraint**, int, const btContactSolverInfo& info,
+                                           btIDebugDraw* debugDrawer) {
+    if (info.m_solverMode & (SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS))
+        return btSequentialImpulseConstraintSolver::solveSingleIteration(iteration, bodies, numBodies, manifolds,
+                                                                         numManifolds, nullptr, 0, info, debugDrawer);
+    btScalar residual = 0;
+    const auto add = [&residual](btScalar r) { residual = btMax(residual, r * r); };
+    for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
+        btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[m_orderNonContactConstraintPool[j]];
+        if (iteration < row.m_overrideNumSolverIterations) add(solve_row(row, true));
+    }
+    if (iteration >= info.m_numIterations) return residual;
+    for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j)
+        add(solve_row(m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]], false));
+    for (int j = 0; j < m_tmpSolverContactFrictionConstraintPool.size(); ++j) {
+        btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[j]];
+        const btScalar normal = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
+        if (normal > btScalar(0)) {
+            row.m_lowerLimit = -(row.m_friction * normal);
+            row.m_upperLimit = row.m_friction * normal;
+            add(solve_row(row, true));
+        }
+    }
+    for (int j = 0; j < m_tmpSolverContactRollingFrictionConstraintPool.size(); ++j) {
+        btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool[j];
+        const btScalar normal = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
+        if (normal > btScalar(0)) {
+            btScalar bound = row.m_friction * normal;
+            if (bound > row.m_friction) bound = row.m_friction;
+            row.m_lowerLimit = -bound;
+            row.m_upperLimit = bound;
+            add(solve_row(row, true));
+        }
+    }
+    return residual;
+}
+
+// Bullet's set-up of the joint rows, in the same order and with the same calls (so the same
+// bytes), with prefetching: first every constraint's row count (and its feedback cleared, its
+// impulse reset), then each constraint's rows from getInfo2.
+void PieceSolver::convertJoints(btTypedConstraint** constraints, int count, const btContactSolverInfo& info) {
+    m_tmpConstraintSizesPool.resizeNoInitialize(count);
+    int rows = 0;
+    for (int i = 0; i < count; ++i) {
+        if (i + kPrefetchConstraints < count) prefetch_constraint(constraints[i + kPrefetchConstraints]);
+        btTypedConstraint* c = constraints[i];
+        c->buildJacobian();
+        c->internalSetAppliedImpulse(0);
+        if (btJointFeedback* fb = c->getJointFeedback()) {
+            fb->m_appliedForceBodyA.setZero();
+            fb->m_appliedTorqueBodyA.setZero();
+            fb->m_appliedForceBodyB.setZero();
+            fb->m_appliedTorqueBodyB.setZero();
+        }
+        btTypedConstraint::btConstraintInfo1& size = m_tmpConstraintSizesPool[i];
+        if (c->isEnabled()) {
+            c->getInfo1(&size);
+        } else {
+            size.m_numConstraintRows = 0;
+            size.nub = 0;
+        }
+        rows += size.m_numConstraintRows;
+    }
+    m_tmpSolverNonContactConstraintPool.resizeNoInitialize(rows);
+    int row = 0;
+    for (int i = 0; i < count; ++i) {
+        if (i + kPrefetchConstraints < count) {
+            const btTypedConstraint* ahead = constraints[i + kPrefetchConstraints];
+            prefetch_constraint(ahead);
+            prefetch_body(ahead->getRigidBodyA());
+            prefetch_body(ahead->getRigidBodyB());
+        }
+        const btTypedConstraint::btConstraintInfo1& size = m_tmpConstraintSizesPool[i];
+        if (size.m_numConstraintRows) {
+            btTypedConstraint* c = constraints[i];
+            const int a = getOrInitSolverBody(c->getRigidBodyA(), info.m_timeStep);
+            const int b = getOrInitSolverBody(c->getRigidBodyB(), info.m_timeStep);
+            convertJoint(&m_tmpSolverNonContactConstraintPool[row], c, size, a, b, info);
+        }
+        row += size.m_numConstraintRows;
+    }
+}
+
+btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                                    const btContactSolverInfo& info) {
+    write_back_joints(info);
+    // Bullet's own write-back then has no joint rows left to visit; contacts and bodies as usual.
+    m_tmpSolverNonContactConstraintPool.resizeNoInitialize(0);
+    return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+}
+
+// What btSequentialImpulseConstraintSolver::writeBackJoints computes, with the bodies' linear and
+// angular factors equal to one: feedback (force and torque on each body) = row direction x
+// impulse / h, summed over the constraint's rows in order; the applied impulse; the breaking
+// threshold.
+void PieceSolver::write_back_joints(const btContactSolverInfo& info) {
+    constexpr int kPrefetchRows = 12;
+    const btScalar inv_h = btScalar(1) / info.m_timeStep;
+    const int rows = m_tmpSolverNonContactConstraintPool.size();
+    for (int j = 0; j < rows; ++j) {
+        if (j + kPrefetchRows < rows) {
+            const auto* ahead = static_cast<const btTypedConstraint*>(
+                m_tmpSolverNonContactConstraintPool[j + kPrefetchRows].m_originalContactPoint);
+            __builtin_prefetch(ahead, 1);
+            __builtin_prefetch(ahead->getJointFeedback(), 1);
+        }
+        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[j];
+        auto* constraint = static_cast<btTypedConstraint*>(row.m_originalContactPoint);
+        const btScalar impulse = row.m_appliedImpulse;
+        if (btJointFeedback* fb = constraint->getJointFeedback()) {
+            fb->m_appliedForceBodyA += row.m_contactNormal1 * impulse * inv_h;
+            fb->m_appliedTorqueBodyA += row.m_relpos1CrossNormal * impulse * inv_h;
+            fb->m_appliedForceBodyB += row.m_contactNormal2 * impulse * inv_h;
+            fb->m_appliedTorqueBodyB += row.m_relpos2CrossNormal * impulse * inv_h;
+        }
+        constraint->internalSetAppliedImpulse(impulse);
+        if (btFabs(impulse) >= constraint->getBreakingImpulseThreshold()) constraint->setEnabled(false);
+    }
+}
+
+}  // namespace shatter

@@ -1,0 +1,40 @@
+// Bullet's sequential-impulse solver, with two per-step costs removed that a structure of
+// thousands of point constraints pays for nothing (measured on a 1,024-piece plate with 7,936
+// constraints; docs/benchmarks.md):
+// - Every iteration, btSequentialImpulseConstraintSolver::solveSingleIteration walks all
+//   constraints to call solveConstraintObsolete, a no-op for every constraint type but the cone
+//   twist, after looking up both solver bodies: ~10% of a step. We add only point constraints
+//   (CompliantPointConstraint), so the walk is skipped.
+// - writeBackJoints fills each constraint's btJointFeedback from its rows, reading both bodies'
+//   linear and angular factors for every row: ~6% of a step, mostly cache misses. Our bodies keep
+//   Bullet's unit factors (nothing here calls setLinearFactor or setAngularFactor), so the same
+//   products come from the rows alone, bit for bit.
+// - Setting up and writing back the joints' rows walks the constraints in island order, which is
+//   not their order in memory: each constraint (704 bytes, ~7 cache lines touched) and its bodies
+//   are a cache miss. convertJoints and the write-back prefetch a few constraints ahead: ~5% of a
+//   step.
+// - The iterations call Bullet's row update through a function pointer from a loop in another
+//   library; ours inline it (the same arithmetic): ~2% of a step.
+// The results are the same bytes as with Bullet's own solver (tested).
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+namespace shatter {
+
+class PieceSolver : public btSequentialImpulseConstraintSolver {
+protected:
+    btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                  btPersistentManifold** manifolds, int numManifolds, btTypedConstraint** constraints,
+                                  int numConstraints, const btContactSolverInfo& info,
+                                  btIDebugDraw* debugDrawer) override;
+    void convertJoints(btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& info) override;
+    btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                           const btContactSolverInfo& info) override;
+
+private:
+    btScalar solve_row(btSolverConstraint& row, bool upper_limit);
+    void write_back_joints(const btContactSolverInfo& info);
+};
+
+}  // namespace shatter
