@@ -46,9 +46,11 @@ BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyA
     r.stiffness = world.stiffness(c);
     r.alpha = settings.alpha;
     r.kicks = energize(now[0], now[1], r.stiffness, settings, key);
-    const double before = world.kinetic_energy_of_pair(c);
+    const Vec3 frame = pair_frame_velocity(now[0], now[1]);
+    const double before = world.kinetic_energy_of_pair(c, frame), before_world = world.kinetic_energy_of_pair(c);
     world.apply_kicks(c, pivot, r.kicks);
-    r.injected_energy = world.kinetic_energy_of_pair(c) - before;
+    r.injected_energy = world.kinetic_energy_of_pair(c, frame) - before;
+    r.momentum_work = world.kinetic_energy_of_pair(c) - before_world - r.injected_energy;
     return r;
 }
 

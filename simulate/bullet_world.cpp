@@ -14,6 +14,7 @@
 #include "simulate/bullet_collision.h"
 #include "simulate/bullet_convert.h"
 #include "simulate/bullet_shapes.h"
+#include "simulate/bullet_solver.h"
 #include "simulate/compliant_constraint.h"
 #include "simulate/spring.h"
 
@@ -53,7 +54,7 @@ struct BulletWorld::Impl {
                      btVector3(kWorldHalfSize, kWorldHalfSize, kWorldHalfSize), objects + 1) {}
     static constexpr btScalar kWorldHalfSize = 1000;  // (unit: m)
     bt32BitAxisSweep3 broadphase;
-    btSequentialImpulseConstraintSolver solver;
+    PieceSolver solver;
     PieceWorld world{&dispatcher, &broadphase, &solver, &config};
 
     struct PieceBody {
@@ -395,6 +396,7 @@ std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) c
         p.force = to_eigen(force[s]);
         p.torque = to_eigen(torque[s]);
         p.velocity = to_eigen(body[s]->getVelocityInLocalPoint(to_bullet(p.r)));
+        p.centre_velocity = to_eigen(body[s]->getLinearVelocity());
     }
     return out;
 }
@@ -411,8 +413,8 @@ void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kic
 
 namespace {
 
-double body_kinetic_energy(const btRigidBody& b) {
-    const Vec3 v = to_eigen(b.getLinearVelocity()), w = to_eigen(b.getAngularVelocity());
+double body_kinetic_energy(const btRigidBody& b, const Vec3& frame = Vec3::Zero()) {
+    const Vec3 v = to_eigen(b.getLinearVelocity()) - frame, w = to_eigen(b.getAngularVelocity());
     const Mat3 inv_i = to_eigen(b.getInvInertiaTensorWorld());
     return 0.5 * v.squaredNorm() / b.getInvMass() + 0.5 * w.dot(inv_i.inverse() * w);
 }
@@ -426,11 +428,11 @@ double BulletWorld::kinetic_energy() const {
     return e;
 }
 
-double BulletWorld::kinetic_energy_of_pair(size_t c) const {
+double BulletWorld::kinetic_energy_of_pair(size_t c, const Vec3& frame) const {
     const auto& j = impl_->joints[c];
     double e = 0;
     for (uint32_t p : {j.piece_a, j.piece_b})
-        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body);
+        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body, frame);
     return e;
 }
 

@@ -79,7 +79,8 @@ public:
 
     // Energy books over the dynamic pieces (driven pieces and props are scripted, not counted).
     double kinetic_energy() const;    // (unit: J)
-    double kinetic_energy_of_pair(size_t c) const;  // of the constraint's two pieces (unit: J)
+    // Of the constraint's dynamic pieces, in a frame moving at velocity `frame` (unit: J).
+    double kinetic_energy_of_pair(size_t c, const Vec3& frame = Vec3::Zero()) const;
     double potential_energy() const;  // -sum m g.x (unit: J)
     double stored_energy() const;     // sum over active constraints of |f|^2 / 2k (unit: J)
     Vec3 linear_momentum() const;     // (unit: kg m/s)

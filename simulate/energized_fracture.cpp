@@ -60,6 +60,12 @@ Vec3 kick_direction(const Vec3& force, const Vec3& torque, const Vec3& r, uint64
     return random_orthogonal(Vec3::UnitZ(), random_key);  // no force at all: any direction
 }
 
+Vec3 pair_frame_velocity(const BodyAtPivot& a, const BodyAtPivot& b) {
+    if (!a.dynamic || !b.dynamic || !(a.inv_mass > 0) || !(b.inv_mass > 0)) return Vec3::Zero();
+    const double ma = 1.0 / a.inv_mass, mb = 1.0 / b.inv_mass;
+    return (ma * a.centre_velocity + mb * b.centre_velocity) / (ma + mb);
+}
+
 BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
                     uint64_t random_key) {
     BreakKicks out;
@@ -81,7 +87,8 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     const bool both = a.dynamic && b.dynamic;
     // The kinetic energy body k gains from mu along its kick: mu b_k + mu^2 a_k.
     auto a_of = [&](int k) { return 0.5 / out.kick[k].effective_mass; };
-    auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity) : 0.0; };
+    const Vec3 frame = pair_frame_velocity(a, b);
+    auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity - frame) : 0.0; };
     if (both && (s.split == EnergySplit::Total || s.directions == KickDirections::Opposed)) {
         // Equal magnitudes, alpha E in all: mu^2 (a_a + a_b) + mu (b_a + b_b) = alpha E.
         const double mu = solve_magnitude(a_of(0) + a_of(1), b_of(0) + b_of(1), released);

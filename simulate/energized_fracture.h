@@ -20,6 +20,13 @@
 // on the frame of reference (measured: 10x alpha E for a bunny breaking on impact). With
 // exact_energy the magnitudes solve the quadratic instead, so that the kinetic energy gained is
 // alpha E (or the split's share) whatever the bodies' motion; directions are unchanged.
+// The quadratic is solved in the pair's frame: v_p is taken relative to the velocity V of the
+// two bodies' common centre of mass (pair_frame_velocity). Released energy is internal: it should
+// not depend on how fast the pair as a whole moves. Solved in the lab frame instead, a pair falling
+// at speed u whose kicks point up (the paper's directions in a bending break) needs mu ~ 2 m_G u:
+// the kicks reflect the fall, and a dropped plate stopped in mid-air at alpha >= 0.5 (measured on
+// assets/plate.toml). In the lab frame the impulses add alpha E + dP . V, dP their net momentum:
+// zero for Directions::Opposed, the "momentum work" of the paper's directions otherwise.
 //
 // How E is shared (the paper says "the process is similar for the second body"):
 //   Split::Total (default): the two bodies take impulses of EQUAL magnitude mu with
@@ -56,13 +63,18 @@ struct BodyAtPivot {
     Vec3 force = Vec3::Zero();    // force the constraint applied to this body (unit: N)
     Vec3 torque = Vec3::Zero();   // torque the constraint applied about the centre of mass (unit: N m)
     Vec3 velocity = Vec3::Zero(); // velocity of the body's point at the pivot, v + w x r (unit: m/s)
+    Vec3 centre_velocity = Vec3::Zero();  // velocity v of the centre of mass (unit: m/s)
 };
+
+// The frame in which a break's energy is counted: the velocity of the two bodies' common centre
+// of mass when both are dynamic; zero when one is static or kinematic (the world's frame).
+Vec3 pair_frame_velocity(const BodyAtPivot& a, const BodyAtPivot& b);
 
 struct Kick {
     Vec3 direction = Vec3::Zero();  // unit vector i_b
     bool random_direction = false;  // |t x f| was tiny: a random direction orthogonal to f
     double effective_mass = 0;      // m_G along direction at the pivot (unit: kg)
-    double energy = 0;              // the kinetic energy this body gains (if at rest, or with exact_energy) (unit: J)
+    double energy = 0;              // the kinetic energy this body gains in the pair's frame (if at rest, or with exact_energy) (unit: J)
     double magnitude = 0;           // mu (unit: N s)
     Vec3 impulse = Vec3::Zero();    // magnitude * direction (unit: N s), applied at the pivot
 };

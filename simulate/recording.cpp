@@ -32,7 +32,8 @@ std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
                                     {"stored_energy_J", b.kicks.stored_energy},
                                     {"alpha", b.alpha},
                                     {"kicks", kicks},
-                                    {"injected_energy_J", b.injected_energy}};
+                                    {"injected_energy_J", b.injected_energy},
+                                    {"momentum_work_J", b.momentum_work}};
         out += j.dump() + "\n";
     }
     return out;

@@ -88,7 +88,7 @@ private:
         const auto start = std::chrono::steady_clock::now();
         BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c));
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        injected_ += r.injected_energy;
+        injected_ += r.injected_energy + r.momentum_work;
         removed_ += r.kicks.stored_energy;
         out.breaks.push_back(r);
     }

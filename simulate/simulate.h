@@ -34,7 +34,13 @@ struct BreakRecord {
     double stiffness = 0;       // (unit: N/m)
     double alpha = 0;
     BreakKicks kicks;           // stored energy E, directions, effective masses, impulses
-    double injected_energy = 0; // kinetic energy the impulses actually added (unit: J)
+    // Kinetic energy the impulses actually added, measured in the pair's frame (the velocity of the
+    // two pieces' common centre of mass before the break; docs/physics.md section 4): alpha E with
+    // exact_energy (unit: J).
+    double injected_energy = 0;
+    // What the impulses' net momentum dP added on top in the world's frame, dP . V: zero for
+    // opposed directions or a pair at rest (unit: J).
+    double momentum_work = 0;
 };
 
 // The energy books at one recorded frame (unit: J).
@@ -43,7 +49,7 @@ struct EnergySample {
     double kinetic = 0;    // of the dynamic pieces
     double potential = 0;  // gravitational, -sum m g.x
     double stored = 0;     // in the active constraints, |f|^2 / 2k
-    double injected = 0;   // by energizing so far
+    double injected = 0;   // by energizing so far, in the world's frame (injected + momentum work)
     double removed = 0;    // stored energy of the constraints broken so far
 };
 

@@ -149,10 +149,22 @@ TEST(PaperScenes, TheBunnyDroppedOnTheSphereEndsInItsTenPieces) {
     const Shot shot = asset("bunny_sphere");
     const Model model = prescore_shot(shot, nullptr);
     ASSERT_EQ(model.pieces.size(), 10u);
-    const double alpha = shot.material.alpha;
-    const SimulationResult r = simulate(model, input_of(shot, alpha, 1.0), "bunny");
-    expect_books_balance(r, alpha);
-    EXPECT_EQ(fragments(model, r), 10u);
+    // At every alpha it ends in its 10 pieces, and its kinetic energy 0.1 s after the first break
+    // grows with alpha: by what the kicks added in the world's frame (alpha E in the pair's frame
+    // plus the momentum work dP . V of the paper's directions, docs/physics.md section 4), of
+    // which at least a quarter is still there 0.1 s later (measured: 0.33 to 0.43 of each step's).
+    double previous_ke = -1, previous_added = 0;
+    for (double alpha : {0.0, 0.5, 1.0, 2.0}) {
+        const SimulationResult r = simulate(model, input_of(shot, alpha, 1.0), "bunny");
+        if (alpha > 0) expect_books_balance(r, alpha);
+        EXPECT_EQ(fragments(model, r), 10u) << "alpha " << alpha;
+        double added = 0;
+        for (const BreakRecord& b : r.breaks) added += b.injected_energy + b.momentum_work;
+        const double ke = kinetic_at(r, r.breaks.front().time + 0.1);
+        if (previous_ke >= 0) EXPECT_GT(ke - previous_ke, (added - previous_added) / 4) << "alpha " << alpha;
+        previous_ke = ke;
+        previous_added = added;
+    }
 }
 
 }  // namespace
