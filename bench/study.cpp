@@ -3,11 +3,14 @@
 //
 //   study [--quick] [--out DIR] [--refs DIR] [--section NAME ...] [--scene NAME ...] [--no-render]
 //
-// Sections: identities, sweeps, methods, stability, continuum, speed (default: all).
-// --quick runs a reduced study on the small rig only (make test: ctest -L study) and checks the
-// headline numbers; exit 1 when one is off. Built a second time against Bullet's float build as
+// Sections: identities, sweeps, methods, stability, continuum, speed, smallest (default: all).
+// --scene also picks the shots of smallest (beam, chain, plate, bunny, bunny_sphere: assets/).
+// --quick runs a reduced study on the small rig only, plus smallest's check of the shipped beam
+// and chain against their finest models (make test: ctest -L study), and checks the headline
+// numbers; exit 1 when one is off. Built a second time against Bullet's float build as
 // study_float, which runs only the identities and the substeps sweeps (its CSV files end in
 // _float) against the double build's references in --refs.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <set>
@@ -51,6 +54,10 @@ bool check_headlines(const Headlines& h) {
           fmt::format("stability (step x stiffness, alpha 1, inside the CFM guard): energized stable in {}/{} cells, "
                       "plain in {}/{} (energized >= plain)", h.stable_energized, h.cells_energized, h.stable_plain,
                       h.cells_plain));
+    for (const Headlines::Smallest& s : h.smallest)
+        check(s.shipped_worst <= 1,
+              fmt::format("smallest model: assets/{}.toml as shipped is within tolerance of its finest model: largest "
+                          "deviation / tolerance = {:.3g} (<= 1)", s.shot, s.shipped_worst));
     check(h.guard_rescues == h.energized_fails,
           fmt::format("stability (mass ratio x alpha): the rate limit makes stable {} of the {} cells where energized "
                       "fails and plain breaking does not", h.guard_rescues, h.energized_fails));
@@ -78,17 +85,23 @@ int run(int argc, char** argv) {
     opt.precision_only = true;
     if (sections.empty()) sections = {"identities", "sweeps"};
 #endif
+    const std::vector<std::string> all_shots = {"beam", "chain", "plate", "bunny", "bunny_sphere"};
+    for (const std::string& s : opt.scenes)
+        if (std::find(all_shots.begin(), all_shots.end(), s) != all_shots.end()) opt.shots.push_back(s);
+    if (opt.scenes.empty()) opt.shots = opt.quick ? std::vector<std::string>{"beam", "chain"} : all_shots;
     if (opt.scenes.empty())
         opt.scenes = opt.quick ? std::vector<std::string>{"rig"}
                                : std::vector<std::string>{"rig", "beam", "plate", "chain", "bunny"};
     if (opt.quick) opt.render = false;
-    if (sections.empty()) sections = {"identities", "sweeps", "methods", "stability", "continuum", "speed"};
+    if (sections.empty())
+        sections = {"identities", "sweeps", "methods", "stability", "continuum", "speed", "smallest"};
     Headlines h;
     const auto t0 = std::chrono::steady_clock::now();
     using Fn = bool (*)(const Options&, Headlines&);
     const std::pair<const char*, Fn> all[] = {{"identities", section_identities}, {"sweeps", section_sweeps},
                                               {"methods", section_methods},       {"stability", section_stability},
-                                              {"continuum", section_continuum},   {"speed", section_speed}};
+                                              {"continuum", section_continuum},   {"speed", section_speed},
+                                              {"smallest", section_smallest}};
     for (const auto& [name, fn] : all) {
         if (!sections.count(name)) continue;
         const auto s0 = std::chrono::steady_clock::now();

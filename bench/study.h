@@ -89,6 +89,10 @@ RunOutcome run_timed(const StudyCase& c, int repeats);
 double trajectory_error(const Model& run_model, const Trajectory& run, const Model& ref_model,
                         const Trajectory& ref, double until);
 
+// The same points, root mean square over the recorded frames with from <= t <= until (unit: m).
+double trajectory_rms(const Model& run_model, const Trajectory& run, const Model& ref_model, const Trajectory& ref,
+                      double from, double until);
+
 double first_break(const SimulationResult& r);  // (unit: s), NaN when nothing broke
 size_t fragments(const Model& model, const SimulationResult& r);
 // Max over breaks of |injected - intended| / intended, intended = alpha E (split "total") or the

@@ -17,6 +17,7 @@ struct Options {
     std::string out = "bench/results/study";
     std::string refs = "/tmp/shatter-study-refs";  // reference trajectories (the float build reads them)
     std::vector<std::string> scenes;               // for sweeps, methods and speed
+    std::vector<std::string> shots;                // for smallest: assets/<shot>.toml
     bool render = true;                            // time rendering in the speed section
 };
 
@@ -34,6 +35,14 @@ struct Headlines {
     // mass x alpha map: cells where plain breaking (alpha = 0 at that mass ratio) is stable and
     // energized fails, and how many of those the rate limit (the guard) makes stable.
     size_t energized_fails = 0, guard_rescues = 0;
+    // smallest: per shot, the largest deviation / tolerance of the shot as shipped and of the
+    // chosen model (quick: the shipped one), against the finest model (<= 1 passes).
+    struct Smallest {
+        std::string shot;
+        double shipped_worst, chosen_worst;
+        bool chosen_is_shipped;
+    };
+    std::vector<Smallest> smallest;
 };
 
 bool section_identities(const Options& opt, Headlines& h);
@@ -42,5 +51,6 @@ bool section_methods(const Options& opt, Headlines& h);
 bool section_stability(const Options& opt, Headlines& h);
 bool section_continuum(const Options& opt, Headlines& h);
 bool section_speed(const Options& opt, Headlines& h);
+bool section_smallest(const Options& opt, Headlines& h);
 
 }  // namespace shatter::study

@@ -289,6 +289,81 @@ def tables():
             print(f"| {r['precision']} | {r['method']} | {num(r['error']):.3g} |")
 
 
+def smallest():
+    """Section 7: deviation from the finest model / tolerance against cost, one knob at a time."""
+    rows = read("smallest.csv")
+    summary = {r["shot"]: r for r in read("smallest_summary.csv")}
+    shots = [s for s in ["beam", "chain", "plate", "bunny", "bunny_sphere"] if any(r["shot"] == s for r in rows)]
+    if not shots:
+        return
+    fig, axes = plt.subplots(1, len(shots), figsize=(4.0 * len(shots), 3.6), squeeze=False)
+    for ax, shot in zip(axes[0], shots):
+        sr = [r for r in rows if r["shot"] == shot]
+        ref = [r for r in sr if r["role"] == "reference"]
+        for knob in dict.fromkeys(r["knob"] for r in sr if r["role"] == "sweep"):
+            kr = [r for r in sr if r["role"] == "sweep" and r["knob"] == knob and not yes(r["refused"])]
+            pts = [(num(r["cpu_per_sim_s"]), num(r["worst_ratio"]), r["value"]) for r in kr]
+            if ref:
+                pts.append((num(ref[0]["cpu_per_sim_s"]), 0.0, "finest"))
+            pts.sort()
+            colour, marker = KNOB_STYLE.get(knob, ("C7", "x"))
+            ys = [min(max(p[1], 0.01), 1e3) for p in pts]
+            ax.plot([p[0] for p in pts], ys, "-", color=colour, marker=marker, ms=4, label=knob.replace("_", " "))
+            for p, y in zip(pts, ys):
+                if p[2] != "finest":
+                    ax.annotate(p[2], (p[0], y), fontsize=6, xytext=(2, 2), textcoords="offset points")
+        for role, mk, colour, label in (("chosen", "*", "r", "chosen"), ("shipped", "D", "k", "shipped")):
+            rr = [r for r in sr if r["role"] == role]
+            if rr:
+                r = rr[-1]
+                ax.plot([num(r["cpu_per_sim_s"])], [min(max(num(r["worst_ratio"]), 0.01), 1e3)], mk, color=colour,
+                        ms=10 if mk == "*" else 6, mfc="none" if mk == "D" else colour, zorder=6, label=label)
+        if ref:
+            ax.axvline(num(ref[0]["cpu_per_sim_s"]), color="0.6", lw=0.8, ls="--")
+        ax.axhline(1, color="r", lw=0.8, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        m = summary.get(shot, {}).get("measure", "")
+        ax.set_title(f"{shot} ({m})", fontsize=9)
+        ax.set_xlabel("CPU s per simulated s")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0][0].set_ylabel("deviation from finest / tolerance")
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    fig.legend(handles, labels, loc="lower center", ncol=min(8, len(labels)), fontsize=8, bbox_to_anchor=(0.5, -0.12))
+    fig.suptitle("The smallest model that serves: one knob at a time down from the finest (dotted: tolerance; "
+                 "dashed: the finest model's cost)", fontsize=10)
+    save(fig, "study-smallest.png")
+    print("\n| shot | role | knob | value | bodies | constraints | collision parts | tets | substeps | "
+          "CPU s / sim s | breaks | fragments | first break (s) | traj RMS (mm) | early RMS (mm) | scatter (m) | "
+          "worst / tol |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in rows:
+        refused = " (refused)" if yes(r["refused"]) else ""
+        print(f"| {r['shot']} | {r['role']} | {r['knob']} | {r['value']}{refused} | {r['bodies']} | "
+              f"{r['constraints']} | {r['collision_parts']} | {r['tets']} | {r['substeps']} | "
+              f"{num(r['cpu_per_sim_s']):.3g} | {r['breaks']} | {r['fragments']} | {num(r['first_break_s']):.4g} | "
+              f"{1e3 * num(r['trajectory_rms_m']):.3g} | {1e3 * num(r['early_rms_m']):.3g} | "
+              f"{num(r['scatter_m']):.3g} | {num(r['worst_ratio']):.3g} |")
+    print("\n| shot | measure | tolerance | finest | chosen | chosen worst / tol | shipped | shipped worst / tol |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in summary.values():
+        if r["measure"] == "trajectory":
+            tol = f"RMS {1e3 * num(r['tol_trajectory_m']):.3g} mm, first break {1e3 * num(r['tol_first_break_s']):.3g} ms"
+        else:
+            tol = (f"first break {1e3 * num(r['tol_first_break_s']):.3g} ms, broken {num(r['tol_broken_fraction']):.3g}, "
+                   f"fragments {num(r['tol_fragments']):g}, scatter {100 * num(r['tol_scatter_rel']):.3g}%, "
+                   f"early RMS {1e3 * num(r['tol_early_m']):.3g} mm")
+        print(f"| {r['shot']} | {r['measure']} | {tol} | {r['finest']} ({r['finest_size']}; "
+              f"{num(r['finest_cpu_per_sim_s']):.3g} s/s) | {r['chosen']} ({r['chosen_size']}; "
+              f"{num(r['chosen_cpu_per_sim_s']):.3g} s/s) | {num(r['chosen_worst_ratio']):.3g} | {r['shipped']} "
+              f"({r['shipped_size']}; {num(r['shipped_cpu_per_sim_s']):.3g} s/s) | {num(r['shipped_worst_ratio']):.3g} |")
+
+
 if __name__ == "__main__":
     cost_error()
     first_break()
@@ -296,3 +371,4 @@ if __name__ == "__main__":
     stability()
     methods()
     tables()
+    smallest()
