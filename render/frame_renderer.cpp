@@ -1,6 +1,8 @@
 #include "render/frame_renderer.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <chrono>
 
 #include "render/gl.h"
@@ -32,9 +34,10 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& settings)
+FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& settings, MsaaRegion region)
     : scene_(scene),
       settings_(settings),
+      region_(region),
       bounds_(animation_bounds(animation_balls(scene))),
       camera_(make_camera(bounds_, animation_balls(scene), settings)),
       lights_(make_lights(bounds_, camera_, settings)),
@@ -194,9 +197,10 @@ void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     p.set("u_background", Eigen::Vector3f(bg[0], bg[1], bg[2]));
 }
 
-void FrameRenderer::scene_pass(uint32_t frame) {
-    target_.bind_scene();
+void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fading_only) {
     const auto& bg = settings_.background;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
     glEnable(GL_FRAMEBUFFER_SRGB);  // linear light in, sRGB bytes stored (clear colour included)
     glClearColor(bg[0], bg[1], bg[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -212,6 +216,7 @@ void FrameRenderer::scene_pass(uint32_t frame) {
     }
     int current = -1;
     for (const Item& item : items_) {
+        if (fading_only && !item.fade) continue;
         const GlProgram& p = scene_programs_[size_t(variant(item))];
         if (variant(item) != current) p.use(), current = variant(item);
         if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
@@ -220,17 +225,60 @@ void FrameRenderer::scene_pass(uint32_t frame) {
         item.mesh->draw();
     }
     glBindTexture(GL_TEXTURE_2D, 0);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
+    const int w = int(settings_.width), h = int(settings_.height);
+    const PixelRect screen{0, 0, w, h};
+    const Eigen::Matrix4f view_projection = camera_.projection * camera_.view;
+    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const Item& item : items_) {
+        if (item.fade) continue;
+        const Eigen::Matrix4f m = view_projection * model_matrix(item, frame);
+        const Eigen::AlignedBox3f& b = item.mesh->bounds();
+        for (int c = 0; c < 8; ++c) {
+            const Eigen::Vector4f p = m * b.corner(Eigen::AlignedBox3f::CornerType(c)).homogeneous();
+            if (!(p.w() > 1e-6f)) return screen;  // behind the eye: no safe rectangle
+            const float x = (p.x() / p.w() * 0.5f + 0.5f) * float(w), y = (p.y() / p.w() * 0.5f + 0.5f) * float(h);
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+    }
+    if (!(x0 <= x1)) return {};  // nothing with an edge
+    constexpr float kMargin = 2;  // pixels
+    auto clamp = [](float v, int hi) { return int(std::clamp(v, 0.0f, float(hi))); };
+    return {clamp(std::floor(x0 - kMargin), w), clamp(std::floor(y0 - kMargin), h), clamp(std::ceil(x1 + kMargin), w),
+            clamp(std::ceil(y1 + kMargin), h)};
 }
 
 void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {
     assert(frame < scene_.trajectory->frames());
     auto start = std::chrono::steady_clock::now();
     if (shadow_map_) shadow_pass(frame);
-    scene_pass(frame);
+    const int w = int(settings_.width), h = int(settings_.height);
+    const PixelRect screen{0, 0, w, h};
+    PixelRect edges;
+    if (settings_.msaa > 1) {
+        edges = region_ == MsaaRegion::Everywhere ? screen : edge_rect(frame);
+        if (!edges.empty()) {
+            target_.bind_scene();
+            scene_pass(frame, edges, false);
+        }
+        // Around the edges' rectangle: up to four bands of ground and background, one sample.
+        target_.bind_resolved();
+        const PixelRect e = edges.empty() ? PixelRect{0, h, 0, h} : edges;
+        for (const PixelRect& band : {PixelRect{0, 0, w, e.y0}, PixelRect{0, e.y1, w, h}, PixelRect{0, e.y0, e.x0, e.y1},
+                                      PixelRect{e.x1, e.y0, w, e.y1}})
+            if (!band.empty()) scene_pass(frame, band, true);
+    } else {
+        target_.bind_scene();
+        scene_pass(frame, screen, false);
+    }
     glFinish();
     times_.draw = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    target_.resolve_and_read(rgba);
+    target_.resolve(edges);
+    target_.read(rgba);
     times_.readback = seconds_since(start);
 }
 

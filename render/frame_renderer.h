@@ -7,6 +7,15 @@
 // scene pass (linear light, MSAA, encoded to sRGB8 by GL on write) -> resolve (glBlitFramebuffer:
 // samples decoded, averaged in linear light, encoded) -> glReadPixels of sRGB bytes. Needs a
 // current GlContext on the calling thread.
+//
+// MSAA only where there are edges: the ground (and planes) fade into the background and have no
+// silhouette of their own, so only the pieces, props and colliders make edges. Their rectangle
+// on screen this frame (projected bounding boxes, 2 pixels of margin) is drawn multisampled and
+// resolved; the rest of the frame, ground and background only, is drawn at one sample per pixel
+// straight into the buffer that is read back. A pixel that one ground triangle covers gets the
+// same colour either way (the shader runs once per pixel; four equal samples average to
+// themselves), so the frame is the all-MSAA frame but for a level or so along the ground's own
+// triangle edges, and costs what its edges need: llvmpipe spends ~3/4 of a frame on the ground.
 #pragma once
 
 #include <array>
@@ -32,7 +41,7 @@ struct FrameTimes {
 
 class FrameRenderer {
 public:
-    FrameRenderer(const RenderScene& scene, const RenderSettings& settings);
+    FrameRenderer(const RenderScene& scene, const RenderSettings& settings, MsaaRegion region = MsaaRegion::Edges);
 
     // Draws frame `frame` (< trajectory frames) and reads it back: width * height * 4 bytes,
     // sRGB-encoded RGBA, GL's bottom row first (see render/srgb_encode.h).
@@ -55,7 +64,10 @@ private:
     void add_static_items();
     Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
     void shadow_pass(uint32_t frame);
-    void scene_pass(uint32_t frame);
+    // Draws the items (all, or only those that fade) into the bound framebuffer, within `rect`.
+    void scene_pass(uint32_t frame, const PixelRect& rect, bool fading_only);
+    // Where this frame's edges are: the screen rectangle of every item that does not fade.
+    PixelRect edge_rect(uint32_t frame) const;
     static int variant(const Item& item) {
         return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4);
     }
@@ -64,6 +76,7 @@ private:
 
     const RenderScene& scene_;
     RenderSettings settings_;
+    MsaaRegion region_;
     Eigen::AlignedBox3d bounds_;
     Camera camera_;
     Lights lights_;

@@ -7,6 +7,7 @@
 namespace shatter {
 
 GpuMesh::GpuMesh(const std::vector<Vertex>& vertices) : count_(static_cast<int>(vertices.size())) {
+    for (const Vertex& v : vertices) bounds_.extend(Eigen::Vector3f(v.position[0], v.position[1], v.position[2]));
     glGenVertexArrays(1, &vao_);
     glGenBuffers(1, &vbo_);
     glBindVertexArray(vao_);

@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "render/mesh_builder.h"
 
 namespace shatter {
@@ -15,8 +17,10 @@ public:
     GpuMesh(const GpuMesh&) = delete;
     GpuMesh& operator=(const GpuMesh&) = delete;
     void draw() const;
+    const Eigen::AlignedBox3f& bounds() const { return bounds_; }  // of the vertices, in the mesh's frame
 
 private:
+    Eigen::AlignedBox3f bounds_;
     unsigned vao_ = 0;
     unsigned vbo_ = 0;
     int count_ = 0;

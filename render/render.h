@@ -53,6 +53,11 @@ struct RenderReport {
     std::string renderer;        // GL_RENDERER
 };
 
+// Where MSAA samples are taken: only around the edges (the default; render/frame_renderer.h), or
+// over the whole frame (the same image within a level, slower; for the benchmark and the test
+// that compares the two).
+enum class MsaaRegion { Edges, Everywhere };
+
 struct RenderOptions {
     bool progress = true;  // a progress bar on stderr
     bool overlap = true;   // encode PNGs on a second thread while the next frame renders
@@ -60,6 +65,7 @@ struct RenderOptions {
     // Frames whose file exists are not drawn again (a resumed run: every frame file was written
     // atomically, and a frame's bytes do not depend on which run drew it).
     bool skip_existing = false;
+    MsaaRegion msaa_region = MsaaRegion::Edges;
 };
 
 // The file name of frame f: frame_00012.png (five digits, more when f >= 100000).

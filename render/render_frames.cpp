@@ -51,7 +51,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
     RenderReport report;
     report.renderer = context.renderer();
     const auto start = std::chrono::steady_clock::now();
-    FrameRenderer renderer(scene, settings);
+    FrameRenderer renderer(scene, settings, options.msaa_region);
     FrameWriter writer(settings.width, settings.height, options.overlap);
     std::optional<Progress> progress;
     if (options.progress) progress.emplace("render", range.end - range.first);

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "render/frame_renderer.h"
+#include "render/image_diff.h"
 #include "render/gl_context.h"
 #include "render/png_io.h"
 #include "render/srgb_encode.h"
@@ -16,10 +17,11 @@ namespace {
 
 using namespace testing_support;
 
-Image render_one(const TestScene& t, const RenderSettings& s, uint32_t frame) {
+Image render_one(const TestScene& t, const RenderSettings& s, uint32_t frame,
+                 MsaaRegion region = MsaaRegion::Edges) {
     GlContext context;
     RenderScene scene = t.scene();
-    FrameRenderer r(scene, s);
+    FrameRenderer r(scene, s, region);
     std::vector<uint8_t> rgba(size_t(s.width) * s.height * 4);
     r.render(frame, rgba.data());
     Image img(s.width, s.height);
@@ -35,6 +37,28 @@ TEST(FrameRenderer, DumpsAFrameForLooking) {
     s.width = 960;
     s.height = 540;
     for (uint32_t f : {0u, 12u, 23u}) save_png(std::string(dir) + "/look_" + std::to_string(f) + ".png", render_one(t, s, f));
+}
+
+// MSAA only around the pieces', props' and colliders' rectangle gives the frame that MSAA over
+// the whole frame gives: the rest is ground and background, where a pixel's four samples are
+// equal. At most a level apart along the ground's own triangle edges; a frame where the
+// pieces fly far apart and one where they sit together.
+TEST(FrameRenderer, MsaaAroundTheEdgesGivesTheAllMsaaFrameWithinALevel) {
+    TestScene t;
+    RenderSettings s = small_render_settings();
+    s.width = 640;
+    s.height = 360;
+    for (uint32_t f : {0u, 23u}) {
+        const Image edges = render_one(t, s, f), everywhere = render_one(t, s, f, MsaaRegion::Everywhere);
+        const DiffMetrics d = compare_images(edges, everywhere, 1);
+        EXPECT_LE(d.max_channel_diff, 1) << "frame " << f;  // measured: 1
+        EXPECT_LT(d.fraction_over, 0.001) << "frame " << f << ": " << d.pixels_over << " pixels over one level";
+        // ...and is not the one-sample frame: the edges are smoothed.
+        s.msaa = 1;
+        const DiffMetrics one = compare_images(edges, render_one(t, s, f), 1);
+        s.msaa = 4;
+        EXPECT_GT(one.pixels_over, 200u) << "frame " << f;  // measured: 959 and 1,164
+    }
 }
 
 }  // namespace
