@@ -20,10 +20,22 @@ namespace shatter {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// FNV-1a of the running executable (/proc/self/exe names the image that runs, even when the file
+// was replaced since), once per process: ~10 ms.
+const std::string& program_hash() {
+    static const std::string hash = file_hash("/proc/self/exe");
+    return hash;
+}
+
+}  // namespace
+
 std::string stage_key(std::string_view stage, const nlohmann::ordered_json& inputs) {
     nlohmann::ordered_json j;
     j["stage"] = stage;
     j["version"] = kVersion;
+    j["program"] = program_hash();
     j["inputs"] = inputs;
     return fmt::format("{:016x}", fnv1a64(j.dump()));
 }

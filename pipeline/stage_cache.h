@@ -17,8 +17,10 @@
 
 namespace shatter {
 
-// The key of a stage: 16 hex digits of FNV-1a over the stage name, shatter's version and the
-// canonical JSON of its inputs.
+// The key of a stage: 16 hex digits of FNV-1a over the stage name, shatter's version, the
+// running program's own bytes (a rebuilt or upgraded shatter computes its stages anew even when
+// the version string is unchanged: keyed on the inputs alone, a cache handed out results of the
+// previous physics) and the canonical JSON of its inputs.
 std::string stage_key(std::string_view stage, const nlohmann::ordered_json& inputs);
 
 // FNV-1a of a file's bytes as 16 hex digits; throws Error(BadInput) when it cannot be read.

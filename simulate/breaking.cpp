@@ -45,8 +45,9 @@ BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyA
     r.strength = world.strength(c);
     r.stiffness = world.stiffness(c);
     r.alpha = settings.alpha;
-    r.kicks = energize(now[0], now[1], r.stiffness, settings, key);
-    const Vec3 frame = pair_frame_velocity(now[0], now[1]);
+    // The pair's frame from the step's own motion, before any of its kicks (`load`).
+    const Vec3 frame = pair_frame_velocity(load[0], load[1]);
+    r.kicks = energize(now[0], now[1], r.stiffness, settings, key, frame);
     const double before = world.kinetic_energy_of_pair(c, frame), before_world = world.kinetic_energy_of_pair(c);
     world.apply_kicks(c, pivot, r.kicks);
     r.injected_energy = world.kinetic_energy_of_pair(c, frame) - before;

@@ -68,6 +68,11 @@ Vec3 pair_frame_velocity(const BodyAtPivot& a, const BodyAtPivot& b) {
 
 BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
                     uint64_t random_key) {
+    return energize(a, b, stiffness, s, random_key, pair_frame_velocity(a, b));
+}
+
+BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
+                    uint64_t random_key, const Vec3& frame) {
     BreakKicks out;
     out.stored_energy = stored_energy(a.force, stiffness);
     const std::array<const BodyAtPivot*, 2> body = {&a, &b};
@@ -87,7 +92,6 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     const bool both = a.dynamic && b.dynamic;
     // The kinetic energy body k gains from mu along its kick: mu b_k + mu^2 a_k.
     auto a_of = [&](int k) { return 0.5 / out.kick[k].effective_mass; };
-    const Vec3 frame = pair_frame_velocity(a, b);
     auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity - frame) : 0.0; };
     if (both && (s.split == EnergySplit::Total || s.directions == KickDirections::Opposed)) {
         // Equal magnitudes, alpha E in all: mu^2 (a_a + a_b) + mu (b_a + b_b) = alpha E.

@@ -55,6 +55,12 @@ TEST(PaperScenes, TheBeamBreaksAtTheScoreAndGivesBackAlphaTimesItsStoredEnergy) 
         const double after = kinetic_at(r, t0);
         EXPECT_GT(after, previous + 0.02) << "alpha " << alpha;
         previous = after;
+        // Its four joints break in one step. Each break's energy is counted in the pair's frame
+        // from before that step's kicks (the halves nearly at rest), so the paper's kicks add
+        // next to nothing on top in the world's frame (with the frame after each kick: -43%).
+        double momentum_work = 0, stored = 0;
+        for (const BreakRecord& b : r.breaks) momentum_work += b.momentum_work, stored += b.kicks.stored_energy;
+        EXPECT_LT(std::abs(momentum_work), 0.02 * alpha * stored + 1e-9) << "alpha " << alpha;
     }
 }
 
@@ -149,21 +155,12 @@ TEST(PaperScenes, TheBunnyDroppedOnTheSphereEndsInItsTenPieces) {
     const Shot shot = asset("bunny_sphere");
     const Model model = prescore_shot(shot, nullptr);
     ASSERT_EQ(model.pieces.size(), 10u);
-    // At every alpha it ends in its 10 pieces, and its kinetic energy 0.1 s after the first break
-    // grows with alpha: by what the kicks added in the world's frame (alpha E in the pair's frame
-    // plus the momentum work dP . V of the paper's directions, docs/physics.md section 4), of
-    // which at least a quarter is still there 0.1 s later (measured: 0.33 to 0.43 of each step's).
-    double previous_ke = -1, previous_added = 0;
+    // At every alpha it ends in its 10 pieces, and every break gives back alpha E in its pair's
+    // frame. (Its kinetic energy after the break does not grow with alpha: docs/scenes.md.)
     for (double alpha : {0.0, 0.5, 1.0, 2.0}) {
         const SimulationResult r = simulate(model, input_of(shot, alpha, 1.0), "bunny");
         if (alpha > 0) expect_books_balance(r, alpha);
         EXPECT_EQ(fragments(model, r), 10u) << "alpha " << alpha;
-        double added = 0;
-        for (const BreakRecord& b : r.breaks) added += b.injected_energy + b.momentum_work;
-        const double ke = kinetic_at(r, r.breaks.front().time + 0.1);
-        if (previous_ke >= 0) EXPECT_GT(ke - previous_ke, (added - previous_added) / 4) << "alpha " << alpha;
-        previous_ke = ke;
-        previous_added = added;
     }
 }
 
