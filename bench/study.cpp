@@ -58,9 +58,18 @@ bool check_headlines(const Headlines& h) {
         check(s.shipped_worst <= 1,
               fmt::format("smallest model: assets/{}.toml as shipped is within tolerance of its finest model: largest "
                           "deviation / tolerance = {:.3g} (<= 1)", s.shot, s.shipped_worst));
-    check(h.guard_rescues == h.energized_fails,
-          fmt::format("stability (mass ratio x alpha): the rate limit makes stable {} of the {} cells where energized "
-                      "fails and plain breaking does not", h.guard_rescues, h.energized_fails));
+    // Until the pair-frame fix (docs/physics.md section 4) energized cascaded in 6 of these cells
+    // (mass ratio 10, alpha 0.5 to 100) and this checked that the rate limit rescued them; now it
+    // checks that there is nothing to rescue. The other methods are printed, not checked.
+    size_t energized_there = 0;
+    std::string others;
+    for (const auto& [m, n] : h.stable_where_plain) {
+        if (m == "energized") energized_there = n;
+        else others += fmt::format("{}{} {}", others.empty() ? "" : ", ", m, n);
+    }
+    check(h.plain_stable_cells > 0 && energized_there == h.plain_stable_cells,
+          fmt::format("stability (mass ratio x alpha, alpha > 0): energized is stable in {} of the {} cells where plain "
+                      "breaking is stable (all; other methods: {})", energized_there, h.plain_stable_cells, others));
     return ok;
 }
 

@@ -33,7 +33,7 @@ const EnergySample& sample_at(const std::vector<EnergySample>& e, double t) {
 bool section_methods(const Options& opt, Headlines& h) {
     Csv csv(opt.out, "methods.csv",
             "scene,method,complete,wall_s,wall_per_sim_s,steps,breaks,first_break_s,stored_J,injected_J,books_error,"
-            "identity_error,fragments,kinetic_0.1s_after_J,difference_from_plain_m");
+            "identity_error,fragments,kinetic_0.1s_after_J,difference_from_plain_m,momentum_work_J,world_books_error");
     for (const std::string& scene : opt.scenes) {
         spdlog::info("study: methods {}", scene);
         StudyCase plain_case;
@@ -44,16 +44,21 @@ bool section_methods(const Options& opt, Headlines& h) {
             const RunOutcome o = run_timed(c, opt.quick ? 1 : 3);
             const std::string name = m.name;
             if (name == "plain") plain_case = c, plain = o;
-            double stored = 0, injected = 0;
-            for (const BreakRecord& b : o.sim.breaks) stored += b.kicks.stored_energy, injected += b.injected_energy;
+            // injected: in each broken pair's frame (what exact_energy controls); momentum work: what the
+            // kicks' net momentum adds on top in the world's frame (docs/physics.md section 4).
+            double stored = 0, injected = 0, work = 0;
+            for (const BreakRecord& b : o.sim.breaks)
+                stored += b.kicks.stored_energy, injected += b.injected_energy, work += b.momentum_work;
+            const double alpha_e = c.input.material.alpha * stored;
+            const double world_books = alpha_e > 0 ? (injected + work - alpha_e) / alpha_e : 0.0;
             const double t0 = first_break(o.sim), until = c.input.simulate.duration;
             const double ke = std::isnan(t0) ? NAN : sample_at(o.sim.energy, t0 + 0.1).kinetic;
             const double diff = trajectory_error(c.model, o.sim.trajectory, plain_case.model, plain.sim.trajectory, until);
-            csv.row(fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, name, o.sim.complete,
+            csv.row(fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, name, o.sim.complete,
                                 d(o.wall_seconds), d(o.wall_seconds / until), o.sim.steps, o.sim.breaks.size(), d(t0),
                                 d(stored), d(injected), d(energy_books_error(o.sim)),
                                 d(energy_identity_error(o.sim, name == "paper")), fragments(c.model, o.sim), d(ke),
-                                d(diff)));
+                                d(diff), d(work), d(world_books)));
             if (scene == "rig") {
                 if (name == "plain") h.plain_injected = injected;
                 if (name == "energized") h.energized_books = energy_books_error(o.sim);

@@ -45,7 +45,11 @@ Reference reference_run(const std::string& scene, const Options& opt) {
     r.o.sim.trajectory = load_trajectory(path);
     if (FILE* f = std::fopen((path + ".first_break").c_str(), "r")) {
         double t = NAN;
-        if (std::fscanf(f, "%lf", &t) == 1 && std::isfinite(t)) r.o.sim.breaks.push_back(BreakRecord{t});
+        if (std::fscanf(f, "%lf", &t) == 1 && std::isfinite(t)) {
+            BreakRecord b;
+            b.time = t;
+            r.o.sim.breaks.push_back(b);
+        }
         std::fclose(f);
     }
     return r;

@@ -32,9 +32,10 @@ struct Headlines {
     double paper_books = NAN;           // rig, paper literal: the same
     size_t stable_plain = 0, cells_plain = 0;          // stability map h x stiffness, inside the CFM guard
     size_t stable_energized = 0, cells_energized = 0;
-    // mass x alpha map: cells where plain breaking (alpha = 0 at that mass ratio) is stable and
-    // energized fails, and how many of those the rate limit (the guard) makes stable.
-    size_t energized_fails = 0, guard_rescues = 0;
+    // mass x alpha map, over the cells with alpha > 0 where plain breaking (alpha = 0 at that mass
+    // ratio) is stable: how many there are, and in how many each energized method is stable too.
+    size_t plain_stable_cells = 0;
+    std::vector<std::pair<std::string, size_t>> stable_where_plain;  // (method, cells)
     // smallest: per shot, the largest deviation / tolerance of the shot as shipped and of the
     // chosen model (quick: the shipped one), against the finest model (<= 1 passes).
     struct Smallest {
