@@ -231,35 +231,42 @@ def methods():
         return
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     names = list(dict.fromkeys(r["method"] for r in rows))
-    fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
+    fig, axes = plt.subplots(1, 4, figsize=(17, 3.6))
     width = 0.8 / len(names)
     for k, name in enumerate(names):
         xs = [i + (k - len(names) / 2 + 0.5) * width for i in range(len(scenes))]
-        get = lambda col: [num(next((r[col] for r in rows if r["scene"] == s and r["method"] == name), "nan"))
+        get = lambda col: [num(next((r.get(col) for r in rows if r["scene"] == s and r["method"] == name), "nan"))
                            for s in scenes]
         walls = get("wall_per_sim_s")
         plain = [num(next(r["wall_per_sim_s"] for r in rows if r["scene"] == s and r["method"] == "plain"))
                  for s in scenes]
         axes[0].bar(xs, [w / p for w, p in zip(walls, plain)], width, label=name, color=f"C{k}")
         axes[1].bar(xs, [b * 100 for b in get("books_error")], width, color=f"C{k}")
-        axes[2].bar(xs, [d * 1e3 for d in get("difference_from_plain_m")], width, color=f"C{k}")
-    titles = ["wall time relative to plain", "injected - alpha E, % of alpha E", "mean distance from plain (mm)"]
+        axes[2].bar(xs, [b * 100 for b in get("world_books_error")], width, color=f"C{k}")
+        axes[3].bar(xs, [d * 1e3 for d in get("difference_from_plain_m")], width, color=f"C{k}")
+    titles = ["wall time relative to plain", "injected - alpha E, % of alpha E\n(in each broken pair's frame)",
+              "injected + momentum work - alpha E, % of alpha E\n(in the world's frame)",
+              "mean distance from plain (mm)"]
     for ax, t in zip(axes, titles):
         ax.set_xticks(range(len(scenes)))
         ax.set_xticklabels(scenes)
         ax.set_title(t, fontsize=9)
         ax.grid(alpha=0.3, axis="y", lw=0.4)
-    axes[2].set_yscale("symlog", linthresh=0.1)
+    for ax in axes[1:3]:
+        ax.set_yscale("symlog", linthresh=1)
+    axes[3].set_yscale("symlog", linthresh=0.1)
     fig.legend(loc="lower center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, -0.08))
     save(fig, "study-methods.png")
     print("\n| scene | method | wall s / sim s | breaks | first break (s) | stored E (J) | injected (J) | "
-          "injected - alpha E | fragments | KE +0.1 s (J) | from plain (mm) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "injected - alpha E | momentum work (J) | world: + momentum work - alpha E | fragments | KE +0.1 s (J) | "
+          "from plain (mm) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
         print(f"| {r['scene']} | {r['method']} | {num(r['wall_per_sim_s']):.3g} | {r['breaks']} | "
               f"{num(r['first_break_s']):.4g} | {num(r['stored_J']):.3g} | {num(r['injected_J']):.3g} | "
-              f"{100 * num(r['books_error']):+.3g}% | {r['fragments']} | {num(r['kinetic_0.1s_after_J']):.3g} | "
-              f"{1e3 * num(r['difference_from_plain_m']):.3g} |")
+              f"{100 * num(r['books_error']):+.3g}% | {num(r.get('momentum_work_J')):.3g} | "
+              f"{100 * num(r.get('world_books_error')):+.3g}% | {r['fragments']} | "
+              f"{num(r['kinetic_0.1s_after_J']):.3g} | {1e3 * num(r['difference_from_plain_m']):.3g} |")
 
 
 def tables():
