@@ -20,6 +20,7 @@
 #include "core/trajectory.h"
 #include "pipeline/encode.h"
 #include "pipeline/export_glb.h"
+#include "pipeline/instability_record.h"
 #include "pipeline/plot.h"
 #include "pipeline/run_metrics.h"
 #include "pipeline/sheets.h"
@@ -100,7 +101,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-
 class Runner {
 public:
     explicit Runner(const RunOptions& options)
@@ -148,7 +148,7 @@ public:
         std::vector<Stage> out;
         if (!stamps_.current("prescore", stage_key("prescore", prescore_inputs()))) return out;
         out.push_back(Stage::Prescore);
-        if (!stamps_.current("simulate", stage_key("simulate", simulate_inputs()))) return out;
+        if (!simulate_current(stage_key("simulate", simulate_inputs()))) return out;
         out.push_back(Stage::Simulate);
         if (stamps_.current("render", render_key()) && all_frames_present()) out.push_back(Stage::Render);
         return out;
@@ -263,6 +263,11 @@ private:
         return {{"model", model_hash()},       {"scene", to_json(shot_.scene)},       {"collider_meshes", colliders},
                 {"object", to_json(shot_.object)}, {"material", to_json(shot_.material)}, {"simulate", to_json(shot_.simulate)}};
     }
+    // A simulate stamp from before NAME.instability.json existed does not list it: not current.
+    bool simulate_current(const std::string& key) const {
+        std::error_code ec;
+        return stamps_.current("simulate", key) && fs::exists(file(".instability.json"), ec);
+    }
     void simulate_stage() {
         StageReport& r = report(Stage::Simulate);
         if (!asked(Stage::Simulate) && !needed_later(Stage::Simulate)) return;
@@ -270,27 +275,43 @@ private:
         const std::string key = stage_key("simulate", simulate_inputs());
         const StageCache::Files files = {{"traj", name_ + ".traj"},
                                          {"breaks.jsonl", name_ + ".breaks.jsonl"},
-                                         {"energy.csv", name_ + ".energy.csv"}};
-        if (!asked(Stage::Simulate)) {
-            if (!stamps_.current("simulate", key)) missing(Stage::Simulate, "the trajectory");
-            return;
+                                         {"energy.csv", name_ + ".energy.csv"},
+                                         {"instability.json", name_ + ".instability.json"}};
+        if (!simulate_current(key)) {
+            if (!asked(Stage::Simulate)) missing(Stage::Simulate, "the trajectory");
+            stamps_.remove("simulate");
         }
+        if (!asked(Stage::Simulate)) return;
         r.outcome = cached_stage("simulate", key, files, [&] {
             const SimulationInput input{shot_.scene, shot_.object, shot_.material, shot_.simulate};
             const SimulationResult sim = simulate(model(), input, model_hash());
             save_trajectory(file(".traj"), sim.trajectory);
             write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
             write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
+            write_file_atomic(file(".instability.json"),
+                              instability_record(shot_.simulate.on_instability, sim).dump(2) + "\n");
             spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke", sim.trajectory.frames(), sim.steps,
                          sim.breaks.size(), model().constraints.size());
         });
         r.seconds = seconds_since(start);
         log_outcome(r);
+        const json& record = instability();
+        if (record.at("clamps").get<uint64_t>() > 0)
+            spdlog::warn("simulate: {} (on_instability = clamp), the first {}",
+                         clamped_steps(record.at("clamps").get<uint64_t>()), instability_where(record.at("first_clamp")));
         if (!trajectory().complete) {
-            spdlog::error("simulate: the simulation stopped early (see {}); the frames before are kept, marked "
-                          "incomplete", file(".traj"));
+            spdlog::error("simulate: the simulation stopped early: {}; the frames before are kept in {}, marked "
+                          "incomplete", record.at("stopped").is_object() ? record.at("stopped").at("what").get<std::string>()
+                                                                         : std::string("(no record)"),
+                          file(".traj"));
             if (result_.exit_code == 0) result_.exit_code = static_cast<int>(ExitCode::Unstable);
         }
+    }
+    // NAME.instability.json as simulate wrote it.
+    const json& instability() {
+        if (!instability_) instability_ = parse_instability_record(read_file(file(".instability.json"), "instability record"),
+                                                                   file(".instability.json"));
+        return *instability_;
     }
 
     const std::string& trajectory_hash() {
@@ -397,7 +418,7 @@ private:
     void write_summary() {
         std::error_code ec;
         if (!fs::exists(file(".model"), ec) || !fs::exists(file(".traj"), ec) ||
-            !stamps_.current("simulate", stage_key("simulate", simulate_inputs())))
+            !simulate_current(stage_key("simulate", simulate_inputs())))
             return;
         const Model& m = model();
         size_t parts = 0;
@@ -412,8 +433,9 @@ private:
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
+        s["instability"] = instability();
         json files = json::object();
-        for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".mp4",
+        for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".instability.json", ".mp4",
                                    ".contact.png", ".energy.png", ".glb"})
             if (fs::exists(file(suffix), ec)) files[std::string(suffix).substr(1)] = name_ + suffix;
         if (all_frames_present()) files["frames"] = "frames/frame_%05d.png";
@@ -432,6 +454,7 @@ private:
     std::string model_hash_, trajectory_hash_, render_key_;
     std::optional<Model> model_;
     std::optional<Trajectory> trajectory_;
+    std::optional<json> instability_;
 };
 
 }  // namespace
@@ -462,11 +485,12 @@ std::string format_run_summary(const RunResult& r) {
                            sim["injected_energy_J"].get<double>(), r.summary["alpha"].get<double>(),
                            sim["peak_piece_speed_m_per_s"].get<double>(),
                            sim["complete"].get<bool>() ? "" : " (INCOMPLETE: the simulation went unstable)");
+        out += format_instability(r.summary.at("instability"));
     }
     out += fmt::format("results:  {}/\n", r.output_dir);
     if (!r.summary.empty())
         for (const auto& [what, name] : r.summary["files"].items())
-            out += fmt::format("  {:<12} {}/{}\n", what, r.output_dir, name.get<std::string>());
+            out += fmt::format("  {:<16} {}/{}\n", what, r.output_dir, name.get<std::string>());
     for (const StageReport& s : r.stages)
         if (s.outcome == StageOutcome::Failed) out += fmt::format("FAILED:   {}: {}\n", to_string(s.stage), s.error);
     return out;

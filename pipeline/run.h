@@ -7,10 +7,12 @@
 // the stages that are up to date, a killed run resumes where it stopped (frames one by one), and
 // the final bytes do not depend on how often the run was interrupted. The output folder:
 //
-//   NAME.model  NAME.pieces.ply  NAME.traj  NAME.breaks.jsonl  NAME.energy.csv  frames/
-//   NAME.mp4  NAME.contact.png  NAME.energy.png  NAME.glb  summary.json  run.log  .shatter/
+//   NAME.model  NAME.pieces.ply  NAME.traj  NAME.breaks.jsonl  NAME.energy.csv  NAME.instability.json
+//   frames/  NAME.mp4  NAME.contact.png  NAME.energy.png  NAME.glb  summary.json  run.log  .shatter/
 //
-// NAME is the shot file's stem.
+// NAME is the shot file's stem. NAME.instability.json says what simulate's instability guard did
+// (clamps, or where it stopped; pipeline/instability_record.h); summary.json repeats it as
+// "instability".
 #pragma once
 
 #include <cstdint>
@@ -75,7 +77,8 @@ RunResult run_shot(const RunOptions& options);
 // running or writing anything. Bad input throws as run_shot does. For `shatter submit`.
 std::vector<Stage> up_to_date_stages(const RunOptions& options);
 
-// The closing summary printed at the end: time per stage, pieces, breaks, energy, files.
+// The closing summary printed at the end: time per stage, pieces, breaks, energy, the instability
+// guard's clamps or stop (a "stability:" line when there were any, or clamp was asked for), files.
 std::string format_run_summary(const RunResult& result);
 
 }  // namespace shatter

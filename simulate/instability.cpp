@@ -72,7 +72,8 @@ EnergyLimit InstabilityGuard::limit(const BulletWorld& world, double injected) c
 
 bool InstabilityGuard::non_finite(const BulletWorld& world) { return !world.finite(); }
 
-std::string InstabilityGuard::where(const BulletWorld& world, const std::vector<BreakRecord>& breaks) {
+std::string InstabilityGuard::where(const BulletWorld& world, const std::vector<BreakRecord>& breaks,
+                                    InstabilityWhere* at) {
     std::string s;
     // The piece: the first non-finite one, else the fastest dynamic one.
     int64_t piece = -1;
@@ -110,20 +111,27 @@ std::string InstabilityGuard::where(const BulletWorld& world, const std::vector<
     if (worst >= 0)
         s += fmt::format("; constraint {} (pieces {} and {}) carries the largest load, {:.4g} N ({:.3g} of its strength)",
                          worst, world.piece_a(size_t(worst)), world.piece_b(size_t(worst)), force, ratio);
+    if (at) {
+        at->time = world.time();
+        at->piece = piece;
+        at->constraint = worst;
+        at->last_broken = breaks.empty() ? -1 : int64_t(breaks.back().constraint);
+    }
     return s;
 }
 
 std::string InstabilityGuard::describe_runaway(const EnergyLimit& e, const BulletWorld& world,
-                                               const std::vector<BreakRecord>& breaks) {
+                                               const std::vector<BreakRecord>& breaks, InstabilityWhere* at) {
     return fmt::format("at t = {:.4f} s the kinetic energy {:.4g} J exceeds what the scene can supply, {:.4g} J (energy "
                        "budget {:.4g} J with the injected and scripted work, +10% and the margin of "
                        "docs/reliability.md): {}",
-                       world.time(), e.kinetic, e.limit, e.budget, where(world, breaks));
+                       world.time(), e.kinetic, e.limit, e.budget, where(world, breaks, at));
 }
 
-std::string InstabilityGuard::describe_non_finite(const BulletWorld& world, const std::vector<BreakRecord>& breaks) {
+std::string InstabilityGuard::describe_non_finite(const BulletWorld& world, const std::vector<BreakRecord>& breaks,
+                                                  InstabilityWhere* at) {
     return fmt::format("at t = {:.4f} s a piece's position or velocity became NaN or infinite: {}", world.time(),
-                       where(world, breaks));
+                       where(world, breaks, at));
 }
 
 }  // namespace shatter

@@ -39,6 +39,7 @@ namespace shatter {
 
 class BulletWorld;
 struct BreakRecord;
+struct InstabilityWhere;
 
 struct EnergyLimit {
     double kinetic = 0;  // K now (unit: J)
@@ -60,10 +61,13 @@ public:
 
     // "at t = 1.2340 s ...: piece 3 is the fastest (85 m/s); constraint 12 (pieces 3 and 4) broke
     // last, at t = 1.2000 s; constraint 7 (pieces 1 and 2) carries the largest force, ..."
-    static std::string where(const BulletWorld& world, const std::vector<BreakRecord>& breaks);
+    // Also fills *at (when given) with the time, piece and constraints the text names.
+    static std::string where(const BulletWorld& world, const std::vector<BreakRecord>& breaks,
+                             InstabilityWhere* at = nullptr);
     static std::string describe_runaway(const EnergyLimit& e, const BulletWorld& world,
-                                        const std::vector<BreakRecord>& breaks);
-    static std::string describe_non_finite(const BulletWorld& world, const std::vector<BreakRecord>& breaks);
+                                        const std::vector<BreakRecord>& breaks, InstabilityWhere* at = nullptr);
+    static std::string describe_non_finite(const BulletWorld& world, const std::vector<BreakRecord>& breaks,
+                                           InstabilityWhere* at = nullptr);
 
     double driven_work() const { return driven_work_; }  // W so far (unit: J)
     double scripted_speed() const { return scripted_speed_; }  // V (unit: m/s)

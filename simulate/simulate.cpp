@@ -121,19 +121,19 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
                      SimulationResult& out) {
     if (InstabilityGuard::non_finite(world)) {
         out.complete = false;
-        out.stop_reason = InstabilityGuard::describe_non_finite(world, out.breaks);
+        out.stop_reason = InstabilityGuard::describe_non_finite(world, out.breaks, &out.stopped_at);
         return false;
     }
     const EnergyLimit e = guard.limit(world, injected);
     if (!(e.kinetic > e.limit)) return true;
     if (mode == InstabilityMode::Stop) {
         out.complete = false;
-        out.stop_reason = InstabilityGuard::describe_runaway(e, world, out.breaks);
+        out.stop_reason = InstabilityGuard::describe_runaway(e, world, out.breaks, &out.stopped_at);
         return false;
     }
     if (out.clamps++ == 0) {
         out.first_clamp_time = world.time();
-        out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks);
+        out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks, &out.first_clamp_at);
         spdlog::warn("simulate: clamping velocities (on_instability = clamp): {}", out.first_clamp);
     }
     world.scale_piece_velocities(std::sqrt(e.limit / e.kinetic));

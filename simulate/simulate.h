@@ -53,6 +53,14 @@ struct EnergySample {
     double removed = 0;    // stored energy of the constraints broken so far
 };
 
+// Where the instability guard found a run unstable (simulate/instability.h); -1: none named.
+struct InstabilityWhere {
+    double time = -1;          // (unit: s)
+    int64_t piece = -1;        // the first piece whose state is not finite, else the fastest
+    int64_t constraint = -1;   // the active constraint with the largest load for its strength
+    int64_t last_broken = -1;  // the constraint broken last
+};
+
 struct SimulationResult {
     Trajectory trajectory;
     std::vector<BreakRecord> breaks;
@@ -61,11 +69,13 @@ struct SimulationResult {
     double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
+    InstabilityWhere stopped_at;
     // on_instability = clamp: how many steps had their velocities scaled down to the energy
     // limit, the first one's time and description (simulate/instability.h).
     uint64_t clamps = 0;
     double first_clamp_time = -1;  // (unit: s)
     std::string first_clamp;
+    InstabilityWhere first_clamp_at;
 };
 
 // Runs the simulation. `model_id` (e.g. the model file's hash) goes into the trajectory's
