@@ -28,7 +28,7 @@ uint64_t break_key(uint64_t seed, size_t constraint) {
 }
 
 BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyAtPivot, 2>& load,
-                            const EnergizeSettings& settings, uint64_t key) {
+                            const EnergizeSettings& settings, uint64_t key, std::optional<Vec3> frame_velocity) {
     Vec3 pivot;
     std::array<BodyAtPivot, 2> now = world.bodies_at_pivot(c, &pivot);
     for (int s = 0; s < 2; ++s) {
@@ -45,8 +45,7 @@ BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyA
     r.strength = world.strength(c);
     r.stiffness = world.stiffness(c);
     r.alpha = settings.alpha;
-    // The pair's frame from the step's own motion, before any of its kicks (`load`).
-    const Vec3 frame = pair_frame_velocity(load[0], load[1]);
+    const Vec3 frame = frame_velocity ? *frame_velocity : pair_frame_velocity(load[0], load[1]);
     r.kicks = energize(now[0], now[1], r.stiffness, settings, key, frame);
     const double before = world.kinetic_energy_of_pair(c, frame), before_world = world.kinetic_energy_of_pair(c);
     world.apply_kicks(c, pivot, r.kicks);

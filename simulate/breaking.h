@@ -7,15 +7,19 @@
 
 #include "simulate/break_policy.h"
 #include "simulate/bullet_world.h"
+#include <optional>
+
 #include "simulate/simulate.h"
 
 namespace shatter {
 
 // `load` holds the two bodies' force and torque from the step in which the constraint broke
 // (bodies_at_pivot before any rollback); positions and inertia are taken from the world as it
-// is now. `key` seeds the random direction of a pure-tension break.
+// is now. `key` seeds the random direction of a pure-tension break. `frame`: the velocity of the
+// frame the break's energy is counted in (docs/physics.md section 4): the pair's centre of mass
+// in the state the kicks act on, before any of the step's kicks; by default the one in `load`.
 BreakRecord energize_broken(BulletWorld& world, size_t constraint, const std::array<BodyAtPivot, 2>& load,
-                            const EnergizeSettings& settings, uint64_t key);
+                            const EnergizeSettings& settings, uint64_t key, std::optional<Vec3> frame = std::nullopt);
 
 // The constraints overloaded in the last step, ascending, with |f| / strength. With
 // BreakCriterion::Force: those whose force norm exceeds their strength. With BulletImpulse: those

@@ -73,7 +73,15 @@ public:
         if (start) world_.restore(*start);
         for (size_t c : broken) world_.remove_constraint(c);
         if (start) world_.step();
-        for (size_t i = 0; i < broken.size(); ++i) energize_break(broken[i], loads[i], out);
+        // Each break's energy is counted in its pair's frame in the state the kicks act on (the
+        // re-run one after a rollback), before any of this step's kicks: docs/physics.md section 4.
+        std::vector<Vec3> frames;
+        for (size_t c : broken) {
+            Vec3 pivot;
+            const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(c, &pivot);
+            frames.push_back(pair_frame_velocity(now[0], now[1]));
+        }
+        for (size_t i = 0; i < broken.size(); ++i) energize_break(broken[i], loads[i], frames[i], out);
     }
 
     double injected() const { return injected_; }  // (unit: J)
@@ -84,9 +92,9 @@ public:
     }
 
 private:
-    void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, SimulationResult& out) {
+    void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame, SimulationResult& out) {
         const auto start = std::chrono::steady_clock::now();
-        BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c));
+        BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame);
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy + r.momentum_work;
         removed_ += r.kicks.stored_energy;
