@@ -5,8 +5,13 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
 
 #include <cerrno>
 #include <csignal>
@@ -17,6 +22,8 @@
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
+
+#include <fmt/format.h>
 
 #include "core/error.h"
 #include "prescore/ply_header.h"
@@ -212,6 +219,9 @@ TriangleMesh import_in_process(const std::string& path) {
 // must not end `shatter prescore` with a signal. So the import runs in a child process (fork), which
 // sends the merged mesh, or its Error's message, back through a pipe; a child that dies is a bad
 // file (exit code 3) whose message says the reader crashed. The cost is one fork per mesh.
+// A reader can also spin for ever (assimp's PLY reader did, on a header with no end_header; see
+// ply_header.h): a child that has not finished by its deadline is killed and the file refused
+// the same way, so that an unattended batch never hangs on one mesh.
 bool write_all(int fd, const void* data, size_t n) {
     const char* p = static_cast<const char*>(data);
     while (n > 0) {
@@ -246,6 +256,20 @@ bool write_all(int fd, const void* data, size_t n) {
     ::_exit(write_all(fd, out.data(), out.size()) ? 0 : 71);
 }
 
+// How long the reader may take: 120 s plus 10 s per MB, far beyond any real import (the bunny,
+// 3 MB: ~0.1 s; two million triangles: a few seconds, ~1.5 minutes under ASan).
+// SHATTER_MESH_IMPORT_TIMEOUT (seconds) overrides it, for the test that proves the deadline.
+double import_deadline_seconds(const std::string& path) {
+    if (const char* env = std::getenv("SHATTER_MESH_IMPORT_TIMEOUT")) {
+        char* end = nullptr;
+        const double s = std::strtod(env, &end);
+        if (end != env && *end == '\0' && s > 0) return s;
+    }
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(path, ec);
+    return 120.0 + 10.0 * (ec ? 0.0 : double(bytes) / 1e6);
+}
+
 TriangleMesh import_isolated(const std::string& path, const std::string& format_fix) {
     int fds[2];
     if (::pipe(fds) != 0) return import_in_process(path);
@@ -263,7 +287,20 @@ TriangleMesh import_isolated(const std::string& path, const std::string& format_
     ::close(fds[1]);
     std::string bytes;
     char buf[1 << 16];
+    const double limit = import_deadline_seconds(path);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
+    bool timed_out = false;
     for (;;) {
+        const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+        pollfd p{fds[0], POLLIN, 0};
+        const int ready = left > 0 ? ::poll(&p, 1, int(std::min(left * 1e3 + 1, 60e3))) : 0;
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready == 0) {
+            if (left > 0) continue;  // a poll slice of at most a minute ended: look at the clock again
+            timed_out = true;
+            ::kill(pid, SIGKILL);
+            break;
+        }
         const ssize_t r = ::read(fds[0], buf, sizeof buf);
         if (r < 0 && errno == EINTR) continue;
         if (r <= 0) break;
@@ -273,6 +310,9 @@ TriangleMesh import_isolated(const std::string& path, const std::string& format_
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
+    if (timed_out)
+        throw_input_error(path, fmt::format("the mesh reader (assimp) did not finish within {:g} s on this file", limit),
+                          "the file is damaged or malformed; " + format_fix);
     if (WIFSIGNALED(status) || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty()) {
         const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status)) + " (" +
                                                           strsignal(WTERMSIG(status)) + ")"

@@ -52,9 +52,7 @@ std::string line_problem(const std::vector<std::string>& w, bool* elements_seen)
 
 }  // namespace
 
-bool looks_like_ply(std::string_view bytes) {
-    return bytes.size() >= 4 && bytes.substr(0, 3) == "ply" && (bytes[3] == '\n' || bytes[3] == '\r');
-}
+bool looks_like_ply(std::string_view bytes) { return bytes.substr(0, 3) == "ply"; }
 
 void check_ply_header(std::string_view bytes, const std::string& path) {
     const std::string fix = "re-export the PLY file; its header is damaged";
@@ -74,7 +72,10 @@ void check_ply_header(std::string_view bytes, const std::string& path) {
         std::istringstream words(line);
         std::vector<std::string> w;
         for (std::string word; words >> word;) w.push_back(word);
-        if (line_no == 1) continue;  // "ply" (looks_like_ply)
+        if (line_no == 1) {
+            if (line != "ply") throw_input_error(where, "a PLY file's first line must be 'ply'", fix);
+            continue;
+        }
         if (w.empty()) continue;
         if (w[0] == "end_header") {
             if (!format_seen) throw_input_error(where, "the PLY header has no format line", fix);

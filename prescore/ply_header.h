@@ -15,7 +15,9 @@
 
 namespace shatter {
 
-// True when `bytes` start like a PLY file.
+// True when `bytes` start like a PLY file: with "ply", as assimp's reader takes it (whatever
+// follows: a file starting "ply\0format ascii ..." with no end_header made assimp 5.2 spin for
+// ever; found by the fuzz smoke in CI, tests/fuzz/regressions/mesh/ply-nul-after-magic-hang.seed).
 bool looks_like_ply(std::string_view bytes);
 
 // Throws Error(BadInput) naming `path`, the header line and the problem.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -212,6 +213,19 @@ TEST(LoadMeshErrors, MissingFileIsBadInputNamingTheFile) {
     const std::string message = bad_input_message(path);
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+}
+
+// A reader that runs past its deadline is killed and the file refused (assimp's PLY reader once
+// spun for ever: tests/fuzz/regressions/mesh/ply-nul-after-magic-hang.seed). The deadline is
+// minutes; SHATTER_MESH_IMPORT_TIMEOUT shortens it here to 1 ms, less than the bunny's ~0.1 s.
+TEST(LoadMeshErrors, AReaderPastItsDeadlineIsKilledAndTheFileRefused) {
+    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
+    ASSERT_EQ(::setenv("SHATTER_MESH_IMPORT_TIMEOUT", "0.001", 1), 0);
+    const std::string message = bad_input_message(bunny);
+    ::unsetenv("SHATTER_MESH_IMPORT_TIMEOUT");
+    EXPECT_NE(message.find(bunny + ": the mesh reader (assimp) did not finish within 0.001 s"), std::string::npos)
+        << message;
+    EXPECT_EQ(load_mesh(bunny, 1.0).triangles.size(), 69666u);  // and without the override it loads
 }
 
 TEST(LoadMeshErrors, TextFileNamedObjIsBadInputNamingTheFile) {
