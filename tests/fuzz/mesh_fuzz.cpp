@@ -5,6 +5,7 @@
 //
 // Input: byte 0 picks the format (the extension of the scratch file), the rest is the file.
 // Seeds: tests/fuzz/corpus/mesh/ are mesh files with that byte in front.
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -21,6 +22,11 @@ constexpr size_t kMaxCheckedTriangles = 20000;
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    // A reader that spins is killed at the import deadline and the file refused, as in
+    // `shatter prescore` (prescore/mesh_load.cpp); here the deadline is 2 s, under libFuzzer's
+    // 10 s hang limit, so that the target checks what shatter does with such a file.
+    static const bool deadline_set = ::setenv("SHATTER_MESH_IMPORT_TIMEOUT", "2", 0) == 0;
+    (void)deadline_set;
     if (size < 1) return 0;
     const std::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
     const std::string path = shatter::fuzz::scratch_file(bytes, kExtensions[data[0] % kFormats]);
