@@ -91,47 +91,42 @@ bool same_partition(const Model& a, const Model& b) {
            a.tet_piece == b.tet_piece;
 }
 
-}  // namespace
-
-double trajectory_error(const Model& run_model, const Trajectory& run, const Model& ref_model, const Trajectory& ref,
-                        double until) {
-    if (!run.complete) return std::numeric_limits<double>::infinity();
+// Calls add(a - b) for every material point of the reference and every frame from `from` to
+// `until` (unit: s) that both trajectories have, a and b the point's world positions in the run
+// and in the reference.
+template <class Add>
+void for_each_point_offset(const Model& run_model, const Trajectory& run, const Model& ref_model,
+                           const Trajectory& ref, double from, double until, Add&& add) {
     const std::vector<MaterialPoint> points = material_points(ref_model);
     std::vector<uint32_t> run_piece(points.size());
     const bool same = same_partition(run_model, ref_model);
     for (size_t i = 0; i < points.size(); ++i) run_piece[i] = same ? points[i].piece : piece_at(run_model, points[i].x);
     const uint32_t frames =
         std::min({run.frames(), ref.frames(), uint32_t(std::floor(until * ref.fps + 1e-9)) + 1});
+    for (uint32_t f = uint32_t(std::max(0.0, std::ceil(from * ref.fps - 1e-9))); f < frames; ++f)
+        for (size_t i = 0; i < points.size(); ++i)
+            add(world_point(run_model, run, f, run_piece[i], points[i].x) -
+                world_point(ref_model, ref, f, points[i].piece, points[i].x));
+}
+
+}  // namespace
+
+double trajectory_error(const Model& run_model, const Trajectory& run, const Model& ref_model, const Trajectory& ref,
+                        double until) {
+    if (!run.complete) return std::numeric_limits<double>::infinity();
     double sum = 0;
     size_t n = 0;
-    for (uint32_t f = 0; f < frames; ++f)
-        for (size_t i = 0; i < points.size(); ++i) {
-            const Vec3 a = world_point(run_model, run, f, run_piece[i], points[i].x);
-            const Vec3 b = world_point(ref_model, ref, f, points[i].piece, points[i].x);
-            sum += (a - b).norm();
-            ++n;
-        }
+    for_each_point_offset(run_model, run, ref_model, ref, 0, until, [&](const Vec3& d) { sum += d.norm(), ++n; });
     return n ? sum / double(n) : 0.0;
 }
 
 double trajectory_rms(const Model& run_model, const Trajectory& run, const Model& ref_model, const Trajectory& ref,
                       double from, double until) {
     if (!run.complete) return std::numeric_limits<double>::infinity();
-    const std::vector<MaterialPoint> points = material_points(ref_model);
-    std::vector<uint32_t> run_piece(points.size());
-    const bool same = same_partition(run_model, ref_model);
-    for (size_t i = 0; i < points.size(); ++i) run_piece[i] = same ? points[i].piece : piece_at(run_model, points[i].x);
-    const uint32_t frames =
-        std::min({run.frames(), ref.frames(), uint32_t(std::floor(until * ref.fps + 1e-9)) + 1});
     double sum = 0;
     size_t n = 0;
-    for (uint32_t f = uint32_t(std::max(0.0, std::ceil(from * ref.fps - 1e-9))); f < frames; ++f)
-        for (size_t i = 0; i < points.size(); ++i) {
-            const Vec3 a = world_point(run_model, run, f, run_piece[i], points[i].x);
-            const Vec3 b = world_point(ref_model, ref, f, points[i].piece, points[i].x);
-            sum += (a - b).squaredNorm();
-            ++n;
-        }
+    for_each_point_offset(run_model, run, ref_model, ref, from, until,
+                          [&](const Vec3& d) { sum += d.squaredNorm(), ++n; });
     return n ? std::sqrt(sum / double(n)) : 0.0;
 }
 
