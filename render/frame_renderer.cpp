@@ -69,6 +69,9 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         if (p.id()) continue;
         const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade);
         p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
+        // Camera, lights, shadow frustum and fade are fixed for the whole render: set once.
+        p.use();
+        set_scene_uniforms(p);
     }
     check_gl("scene setup");
 }
@@ -209,11 +212,6 @@ void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fadin
     if (settings_.msaa > 1) glEnable(GL_MULTISAMPLE); else glDisable(GL_MULTISAMPLE);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, shadow_map_ ? shadow_map_->texture() : 0);
-    for (const GlProgram& p : scene_programs_) {
-        if (!p.id()) continue;
-        p.use();
-        set_scene_uniforms(p);
-    }
     int current = -1;
     for (const Item& item : items_) {
         if (fading_only && !item.fade) continue;
