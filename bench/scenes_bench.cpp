@@ -4,12 +4,14 @@
 //
 //   scenes_bench [SCENE ...] [--set SECTION.KEY=VALUE ...] [--alpha A,B,...]
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/shot.h"
+#include "pipeline/run_metrics.h"
 #include "prescore/prescore.h"
 #include "simulate/simulate.h"
 
@@ -59,8 +61,15 @@ void run(const std::string& scene, const std::vector<std::string>& sets, std::ve
             later = post.kinetic;
             mech = post.kinetic + post.potential - pre->kinetic - pre->potential;
         }
-        std::printf("%s,%g,%zu,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f\n", scene.c_str(), alpha, r.breaks.size(), t0,
-                    stored, injected, before, at_break, later, mech, fragments(model, r), seconds);
+        // The spread (kinetic energy about the common centre of mass) 10, 50 and 100 ms after the
+        // first break, from the recorded frames (record at a higher fps for a finer look).
+        double spread[3] = {0, 0, 0};
+        const double after[3] = {0.01, 0.05, 0.1};
+        for (int i = 0; i < 3 && t0 >= 0; ++i)
+            spread[i] = spread_energy(model, r.trajectory, uint32_t(std::lround((t0 + after[i]) * r.trajectory.fps)));
+        std::printf("%s,%g,%zu,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%d,%.2f\n", scene.c_str(), alpha,
+                    r.breaks.size(), t0, stored, injected, before, at_break, later, mech, spread[0], spread[1], spread[2],
+                    fragments(model, r), r.complete ? 1 : 0, seconds);
         std::fflush(stdout);
     }
 }
@@ -84,7 +93,8 @@ int main(int argc, char** argv) {
     }
     if (scenes.empty()) scenes = {"beam", "plate", "chain", "bunny_sphere"};
     std::printf("scene,alpha,breaks,first_break_s,stored_J,injected_J,kinetic_before_J,kinetic_at_break_frame_J,"
-                "kinetic_0.1s_after_J,mechanical_gain_0.1s_after_J,fragments,seconds\n");
+                "kinetic_0.1s_after_J,mechanical_gain_0.1s_after_J,spread_10ms_J,spread_50ms_J,spread_100ms_J,fragments,"
+                "complete,seconds\n");
     try {
         for (const std::string& s : scenes) shatter::run(s, sets, alphas);
     } catch (const std::exception& e) {

@@ -11,10 +11,6 @@ namespace shatter {
 
 using json = nlohmann::ordered_json;
 
-namespace {
-
-// Translational kinetic energy of the pieces relative to their common centre of mass at frame f
-// (velocities by central differences of the recorded positions).
 double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
     if (t.frames() < 3) return 0;
     f = std::clamp<uint32_t>(f, 1, t.frames() - 2);
@@ -31,8 +27,6 @@ double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
     for (uint32_t b = 0; b < t.pieces; ++b) e += 0.5 * model.pieces[b].mass.mass * (v[b] - v_cm).squaredNorm();
     return e;
 }
-
-}  // namespace
 
 nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& traj, const std::string& breaks_jsonl,
                                         const std::string& energy_csv_text) {
