@@ -2,6 +2,9 @@
 // sections 5 and 6): which pairs the narrow phase sees, and how tight the broadphase boxes are.
 #pragma once
 
+#include <algorithm>
+#include <limits>
+
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -45,14 +48,17 @@ public:
     void updateAabbs() override;
 };
 
-// Whether contactPairTest found two bodies closer than a threshold (m).
+// Whether contactPairTest found two bodies closer than a threshold (m), and the deepest point
+// (the most negative distance: the overlap; unit: m).
 struct ContactFound : btCollisionWorld::ContactResultCallback {
     double threshold;
     bool found = false;
+    double deepest = std::numeric_limits<double>::infinity();
     explicit ContactFound(double t) : threshold(t) { m_closestDistanceThreshold = btScalar(t); }
     btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
                              const btCollisionObjectWrapper*, int, int) override {
         if (p.getDistance() < threshold) found = true;
+        deepest = std::min(deepest, double(p.getDistance()));
         return 0;
     }
 };

@@ -171,6 +171,11 @@ void BulletWorld::ignore_initial_overlaps() {
         }
 }
 
+// An overlap deeper than this fraction of the smaller piece's least box extent is not pushed out
+// when a pair's last joint breaks (remove_constraint). Touching faces and the joints' own
+// compression (micrometres) stay far below it.
+constexpr double kDeepOverlap = 0.01;
+
 // A pair is released when its bounding boxes are apart by more than 5% of the smaller box's
 // least extent: neighbours that only touch along an edge jitter by a hair while joined to the
 // rest, and releasing them at the first hair would make them collide at that edge every step.
@@ -369,10 +374,28 @@ uint32_t BulletWorld::piece_a(size_t c) const { return impl_->joints[c].piece_a;
 uint32_t BulletWorld::piece_b(size_t c) const { return impl_->joints[c].piece_b; }
 
 void BulletWorld::remove_constraint(size_t c) {
-    auto& j = impl_->joints[c];
+    Impl& m = *impl_;
+    auto& j = m.joints[c];
     if (!j.active) return;
-    impl_->world.removeConstraint(j.constraint.get());
+    m.world.removeConstraint(j.constraint.get());
     j.active = false;
+    // Joined pieces never collide, so a pair whose last joint breaks may overlap by then: partly
+    // broken, its remaining joints a hinge, it can turn into itself (measured: two of the plate's
+    // cubes 18 mm into each other). Their new contact would push that overlap out while the pieces
+    // are still joined to others: each step's split-impulse push stretches a stiff joint, whose
+    // ERP turns it into speed (4 J in one step: the plate's runaways). Such a pair ignores itself,
+    // like a pair that starts overlapping, until it has parted (release_parted_pairs).
+    btRigidBody* a = m.pieces[j.piece_a].body;
+    btRigidBody* b = m.pieces[j.piece_b].body;
+    if (!a->checkCollideWith(b)) return;  // still joined by another constraint
+    ContactFound contact(1e-4);
+    m.world.contactPairTest(a, b, contact);
+    btVector3 lo_a, hi_a, lo_b, hi_b;
+    a->getAabb(lo_a, hi_a);
+    b->getAabb(lo_b, hi_b);
+    const btVector3 ea = hi_a - lo_a, eb = hi_b - lo_b;
+    const double deep = kDeepOverlap * double(std::min(ea[ea.minAxis()], eb[eb.minAxis()]));
+    if (contact.deepest < -deep) m.dispatcher.ignored.insert(std::minmax(int(j.piece_a), int(j.piece_b)));
 }
 
 std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) const {
