@@ -157,11 +157,10 @@ TEST(PaperScenes, TheBunnyDroppedOnTheSphereEndsInItsTenPieces) {
     const Model model = prescore_shot(shot, nullptr);
     ASSERT_EQ(model.pieces.size(), 10u);
     // At every alpha it ends in its 10 pieces, and every break gives back alpha E in its pair's
-    // frame. What the breaks give back shows: with the shot's kicks along each joint's load
-    // (directions = "force"), the fragments' kinetic energy 0.1 s after the first break, and its
-    // spread about their common centre of mass, grow with every step of alpha. (With the paper's
-    // directions they do not: half the kicks drive a piece into its partner. docs/scenes.md has
-    // the measurements, over 8 nudged drops per alpha.)
+    // frame. What the breaks give back shows: with the shot's momentum-conserving kicks
+    // (directions = "opposed"), the fragments' kinetic energy 0.1 s after the first break, and its
+    // spread about their common centre of mass, grow with every step of alpha. (They did in all 8
+    // of 8 nudged drops per alpha: docs/scenes.md.)
     double previous_kinetic = -1, previous_spread = -1;
     for (double alpha : {0.0, 0.5, 1.0, 2.0}) {
         const SimulationResult r = simulate(model, input_of(shot, alpha, 1.0), "bunny");
