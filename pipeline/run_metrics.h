@@ -11,17 +11,17 @@
 
 namespace shatter {
 
+// Translational kinetic energy of the pieces relative to their common centre of mass at frame f
+// (velocities by central differences of the recorded positions; f is clamped to [1, frames - 2])
+// (unit: J).
+double spread_energy(const Model& model, const Trajectory& t, uint32_t f);
+
 // {"frames", "fps", "complete", "breaks", "first_break_s", "stored_energy_J", "injected_energy_J",
 //  "fragments" (groups of pieces still joined at the end), "kinetic_energy_after_first_break_J"
 //  (all pieces, 0.1 s after the first break, from the energy books), "spread_energy_after_first_break_J"
 //  (translational kinetic energy relative to the centre of mass of all pieces, 0.1 s after the
 //  first break: how hard the fragments fly apart, without the object's common motion),
 //  "peak_piece_speed_m_per_s"}. Null where there is no break.
-// Translational kinetic energy of the pieces relative to their common centre of mass at frame f
-// (velocities by central differences of the recorded positions; f is clamped to [1, frames - 2])
-// (unit: J).
-double spread_energy(const Model& model, const Trajectory& t, uint32_t f);
-
 nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& trajectory, const std::string& breaks_jsonl,
                                         const std::string& energy_csv);
 

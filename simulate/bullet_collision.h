@@ -2,12 +2,10 @@
 // sections 5 and 6): which pairs the narrow phase sees, and how tight the broadphase boxes are.
 #pragma once
 
-#include <algorithm>
-#include <limits>
-
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <utility>
 
