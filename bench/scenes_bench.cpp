@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/fragments.h"
 #include "core/shot.h"
-#include "pipeline/run_metrics.h"
 #include "prescore/prescore.h"
 #include "simulate/simulate.h"
 

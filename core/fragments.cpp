@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <numeric>
 
+#include "core/fragments.h"
 #include "core/model.h"
 
 namespace shatter {
@@ -16,6 +18,23 @@ size_t count_fragments(const Model& model, const std::vector<bool>& broken) {
     size_t groups = 0;
     for (uint32_t p = 0; p < parent.size(); ++p) groups += find(p) == p;
     return groups;
+}
+
+double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
+    if (t.frames() < 3) return 0;
+    f = std::clamp<uint32_t>(f, 1, t.frames() - 2);
+    double mass = 0;
+    Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> v(t.pieces);
+    for (uint32_t b = 0; b < t.pieces; ++b) {
+        v[b] = (t.pose(f + 1, b).position - t.pose(f - 1, b).position).cast<double>() * (t.fps / 2);
+        mass += model.pieces[b].mass.mass;
+        momentum += model.pieces[b].mass.mass * v[b];
+    }
+    const Eigen::Vector3d v_cm = mass > 0 ? Eigen::Vector3d(momentum / mass) : Eigen::Vector3d::Zero();
+    double e = 0;
+    for (uint32_t b = 0; b < t.pieces; ++b) e += 0.5 * model.pieces[b].mass.mass * (v[b] - v_cm).squaredNorm();
+    return e;
 }
 
 }  // namespace shatter

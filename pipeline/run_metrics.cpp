@@ -1,6 +1,7 @@
 #include "pipeline/run_metrics.h"
 
 #include "core/error.h"
+#include "core/fragments.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,23 +11,6 @@
 namespace shatter {
 
 using json = nlohmann::ordered_json;
-
-double spread_energy(const Model& model, const Trajectory& t, uint32_t f) {
-    if (t.frames() < 3) return 0;
-    f = std::clamp<uint32_t>(f, 1, t.frames() - 2);
-    double mass = 0;
-    Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
-    std::vector<Eigen::Vector3d> v(t.pieces);
-    for (uint32_t b = 0; b < t.pieces; ++b) {
-        v[b] = (t.pose(f + 1, b).position - t.pose(f - 1, b).position).cast<double>() * (t.fps / 2);
-        mass += model.pieces[b].mass.mass;
-        momentum += model.pieces[b].mass.mass * v[b];
-    }
-    const Eigen::Vector3d v_cm = mass > 0 ? Eigen::Vector3d(momentum / mass) : Eigen::Vector3d::Zero();
-    double e = 0;
-    for (uint32_t b = 0; b < t.pieces; ++b) e += 0.5 * model.pieces[b].mass.mass * (v[b] - v_cm).squaredNorm();
-    return e;
-}
 
 nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& traj, const std::string& breaks_jsonl,
                                         const std::string& energy_csv_text) {

@@ -11,11 +11,6 @@
 
 namespace shatter {
 
-// Translational kinetic energy of the pieces relative to their common centre of mass at frame f
-// (velocities by central differences of the recorded positions; f is clamped to [1, frames - 2])
-// (unit: J).
-double spread_energy(const Model& model, const Trajectory& t, uint32_t f);
-
 // {"frames", "fps", "complete", "breaks", "first_break_s", "stored_energy_J", "injected_energy_J",
 //  "fragments" (groups of pieces still joined at the end), "kinetic_energy_after_first_break_J"
 //  (all pieces, 0.1 s after the first break, from the energy books), "spread_energy_after_first_break_J"

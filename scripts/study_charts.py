@@ -347,15 +347,15 @@ def smallest():
     save(fig, "study-smallest.png")
     print("\n| shot | role | knob | value | bodies | constraints | collision parts | tets | substeps | "
           "CPU s / sim s | breaks | fragments | first break (s) | traj RMS (mm) | early RMS (mm) | scatter (m) | "
-          "KE 0.1 s after (J) | worst / tol |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "KE 0.1 s after (J) | spread (J) | worst / tol |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
         refused = " (refused)" if yes(r["refused"]) else ""
         print(f"| {r['shot']} | {r['role']} | {r['knob']} | {r['value']}{refused} | {r['bodies']} | "
               f"{r['constraints']} | {r['collision_parts']} | {r['tets']} | {r['substeps']} | "
               f"{num(r['cpu_per_sim_s']):.3g} | {num(r['breaks']):.4g} | {num(r['fragments']):.3g} | {num(r['first_break_s']):.4g} | "
               f"{1e3 * num(r['trajectory_rms_m']):.3g} | {1e3 * num(r['early_rms_m']):.3g} | "
-              f"{num(r['scatter_m']):.3g} | {num(r['kinetic_after_J']):.3g} | {num(r['worst_ratio']):.3g} |")
+              f"{num(r['scatter_m']):.3g} | {num(r['kinetic_after_J']):.3g} | {num(r['spread_after_J']):.3g} | {num(r['worst_ratio']):.3g} |")
     print("\n| shot | measure | tolerance | finest | chosen | chosen worst / tol | shipped | shipped worst / tol |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in summary.values():
@@ -365,6 +365,7 @@ def smallest():
             tol = (f"first break {1e3 * num(r['tol_first_break_s']):.3g} ms, broken {num(r['tol_broken_fraction']):.3g}, "
                    f"fragments {num(r['tol_fragments']):.3g}, scatter {100 * num(r['tol_scatter_rel']):.3g}%, "
                    f"kinetic energy 0.1 s after {100 * num(r['tol_kinetic_rel']):.3g}%, "
+                   f"its spread {100 * num(r['tol_spread_rel']):.3g}%, "
                    f"early RMS {1e3 * num(r['tol_early_m']):.3g} mm")
         print(f"| {r['shot']} | {r['measure']} | {tol} | {r['finest']} ({r['finest_size']}; "
               f"{num(r['finest_cpu_per_sim_s']):.3g} s/s) | {r['chosen']} ({r['chosen_size']}; "

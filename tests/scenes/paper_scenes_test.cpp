@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "pipeline/run_metrics.h"
+#include "core/fragments.h"
 #include "scene_support.h"
 
 namespace shatter {
