@@ -4,11 +4,10 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "simulate/break_policy.h"
 #include "simulate/bullet_world.h"
-#include <optional>
-
 #include "simulate/simulate.h"
 
 namespace shatter {

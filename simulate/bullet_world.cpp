@@ -176,6 +176,17 @@ void BulletWorld::ignore_initial_overlaps() {
 // compression (micrometres) stay far below it.
 constexpr double kDeepOverlap = 0.01;
 
+namespace {
+
+// The least extent of the smaller of two boxes (unit: m): the scale of a pair's overlap and
+// parting thresholds.
+btScalar least_extent(const btVector3& lo_a, const btVector3& hi_a, const btVector3& lo_b, const btVector3& hi_b) {
+    const btVector3 ea = hi_a - lo_a, eb = hi_b - lo_b;
+    return std::min(ea[ea.minAxis()], eb[eb.minAxis()]);
+}
+
+}  // namespace
+
 // A pair is released when its bounding boxes are apart by more than 5% of the smaller box's
 // least extent: neighbours that only touch along an edge jitter by a hair while joined to the
 // rest, and releasing them at the first hair would make them collide at that edge every step.
@@ -185,8 +196,7 @@ void BulletWorld::release_parted_pairs() {
         btVector3 lo_a, hi_a, lo_b, hi_b;
         m.pieces[size_t(it->first)].body->getAabb(lo_a, hi_a);
         m.pieces[size_t(it->second)].body->getAabb(lo_b, hi_b);
-        const btVector3 ea = hi_a - lo_a, eb = hi_b - lo_b;
-        const btScalar gap = btScalar(0.05) * std::min(ea[ea.minAxis()], eb[eb.minAxis()]);
+        const btScalar gap = btScalar(0.05) * least_extent(lo_a, hi_a, lo_b, hi_b);
         const btVector3 pad(gap, gap, gap);
         it = TestAabbAgainstAabb2(lo_a - pad, hi_a + pad, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
     }
@@ -393,9 +403,8 @@ void BulletWorld::remove_constraint(size_t c) {
     btVector3 lo_a, hi_a, lo_b, hi_b;
     a->getAabb(lo_a, hi_a);
     b->getAabb(lo_b, hi_b);
-    const btVector3 ea = hi_a - lo_a, eb = hi_b - lo_b;
-    const double deep = kDeepOverlap * double(std::min(ea[ea.minAxis()], eb[eb.minAxis()]));
-    if (contact.deepest < -deep) m.dispatcher.ignored.insert(std::minmax(int(j.piece_a), int(j.piece_b)));
+    if (contact.deepest < -kDeepOverlap * double(least_extent(lo_a, hi_a, lo_b, hi_b)))
+        m.dispatcher.ignored.insert(std::minmax(int(j.piece_a), int(j.piece_b)));
 }
 
 std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) const {

@@ -140,7 +140,6 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
         return false;
     }
     if (out.clamps++ == 0) {
-        out.first_clamp_time = world.time();
         out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks, &out.first_clamp_at);
         spdlog::warn("simulate: clamping velocities (on_instability = clamp): {}", out.first_clamp);
     }

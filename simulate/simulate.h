@@ -71,9 +71,9 @@ struct SimulationResult {
     std::string stop_reason;  // why it stopped early (complete == false)
     InstabilityWhere stopped_at;
     // on_instability = clamp: how many steps had their velocities scaled down to the energy
-    // limit, the first one's time and description (simulate/instability.h).
+    // limit, the first one's description and where it was (its time: first_clamp_at.time;
+    // simulate/instability.h).
     uint64_t clamps = 0;
-    double first_clamp_time = -1;  // (unit: s)
     std::string first_clamp;
     InstabilityWhere first_clamp_at;
 };

@@ -123,7 +123,7 @@ TEST(Instability, ClampKeepsGoingToTheEndAndCountsTheClamps) {
     EXPECT_TRUE(r.complete) << r.stop_reason;
     EXPECT_TRUE(r.trajectory.complete);
     EXPECT_GT(r.clamps, 0u);
-    EXPECT_NEAR(r.first_clamp_time, 2.0 / 30, 1e-9);
+    EXPECT_NEAR(r.first_clamp_at.time, 2.0 / 30, 1e-9);
     EXPECT_NE(r.first_clamp.find("kinetic energy"), std::string::npos) << r.first_clamp;
     EXPECT_EQ(r.trajectory.frames(), frame_count(wild(InstabilityMode::Clamp).simulate));
 }
