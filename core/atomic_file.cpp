@@ -54,6 +54,10 @@ std::string read_file(const std::string& path, const char* what) {
         throw_input_error(path, std::string(what) + " not found", "check the path");
     if (std::filesystem::is_directory(path, ec))
         throw_input_error(path, std::string(what) + " is a directory", "name a file");
+    // A FIFO, socket or device: opening a FIFO with no writer would wait forever.
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw_input_error(path, std::string(what) + " is not a regular file (a FIFO, socket or device)",
+                          "save it to a file and name that");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw_input_error(path, std::string("cannot open ") + what + ": " + errno_text(), "check its permissions");
     std::ostringstream ss;

@@ -150,6 +150,11 @@ void check_path(const std::string& path) {
     if (std::filesystem::is_directory(status)) {
         throw_input_error(path, "mesh path is a directory, not a file", "name the mesh file itself");
     }
+    if (!std::filesystem::is_regular_file(status)) {
+        // A FIFO with no writer would block the first read, and the mesh is read more than once.
+        throw_input_error(path, "mesh path is not a regular file (a FIFO, socket or device)",
+                          "save the mesh to a file and name that");
+    }
     if (std::filesystem::file_size(path, ec) == 0 && !ec) {
         throw_input_error(path, "mesh file is empty (0 bytes)", "give a file with a surface mesh; re-export it");
     }

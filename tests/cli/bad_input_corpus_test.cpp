@@ -3,7 +3,9 @@
 // its documented exit code, a message that names the problem, and, when it fails, no file at all
 // in its output folder (no partial output). One test per case, so ctest runs them in parallel.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -103,6 +105,12 @@ TEST_P(BadInputCorpus, EndsWithItsExitCodeAMessageAndNoPartialOutput) {
     command = replace_all(command, "{out}", out.string());
     if (command.find("{big}") != std::string::npos)
         command = replace_all(command, "{big}", write_big_stl(tmp.file("big.stl"), 2'000'000));
+    if (command.find("{fifo}") != std::string::npos) {
+        // A named pipe nobody writes to: reading it would wait forever.
+        const std::string fifo = tmp.file("pipe");
+        ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+        command = replace_all(command, "{fifo}", fifo);
+    }
     const auto r = run_shatter(split_args(command), tmp.path().string());
     EXPECT_EQ(r.exit_code, c.exit_code) << "shatter " << command << "\nstderr:\n" << r.err;
     EXPECT_NE((r.err + r.out).find(c.message), std::string::npos)
