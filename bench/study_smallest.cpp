@@ -6,8 +6,9 @@
 //   1. the reference: every model-size knob at its finest value (the finest the CFM guard admits);
 //   2. an impact (a chaotic scene) is compared as an ensemble: every model is dropped 8 times,
 //      from its own place and moved by up to 1 mm (an invisible change: up and down over a flat
-//      ground, sideways over a sphere; drop_offsets says why), and the statistics of the 8 are compared with the finest model's 8 (a two-sample test: the means
-//      within twice their standard error, or within a floor a viewer would not see);
+//      ground, sideways over a sphere; Nudge says why), and the statistics of the 8 are
+//      compared with the finest model's 8 (a two-sample test: the means within twice their
+//      standard error, or within a floor a viewer would not see);
 //   3. one knob at a time down from the finest, the others at their finest;
 //   4. per knob, the coarsest value that passes together with every finer value; then all
 //      knobs at their chosen values together (if that fails, the knob furthest off is moved one
