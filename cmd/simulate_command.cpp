@@ -53,7 +53,9 @@ SimulationInput input_from(const SimulateFlags& f) {
     if (f.energy_split)
         in.simulate.energy_split = *f.energy_split == "per_body" ? EnergySplitMode::PerBody : EnergySplitMode::Total;
     if (f.directions)
-        in.simulate.directions = *f.directions == "opposed" ? KickDirectionMode::Opposed : KickDirectionMode::Paper;
+        in.simulate.directions = *f.directions == "opposed" ? KickDirectionMode::Opposed
+                                 : *f.directions == "force" ? KickDirectionMode::Force
+                                                            : KickDirectionMode::Paper;
     if (f.on_instability)
         in.simulate.on_instability = *f.on_instability == "clamp" ? InstabilityMode::Clamp : InstabilityMode::Stop;
     return in;
@@ -140,8 +142,9 @@ RunCommand add_simulate_command(CLI::App& root) {
         ->check(CLI::IsMember({"total", "per_body"}));
     c->add_option("--directions", f->directions,
                   option_help("paper: each body kicked along -(torque x force); opposed: equal and opposite kicks that "
-                              "conserve momentum", "", to_string(s.directions)))
-        ->check(CLI::IsMember({"paper", "opposed"}));
+                              "conserve momentum; force: equal and opposite kicks along the joint's load, never into the "
+                              "partner", "", to_string(s.directions)))
+        ->check(CLI::IsMember({"paper", "opposed", "force"}));
     c->add_option("--on-instability", f->on_instability,
                   option_help("when the kinetic energy runs away (beyond what the scene supplies + 10%): stop (keep the "
                               "frames before, marked incomplete, exit 5) or clamp (scale the speeds down and go on; a NaN "

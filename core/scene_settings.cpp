@@ -76,6 +76,7 @@ const char* to_string(KickDirectionMode m) {
     switch (m) {
         case KickDirectionMode::Paper: return "paper";
         case KickDirectionMode::Opposed: return "opposed";
+        case KickDirectionMode::Force: return "force";
     }
     return "?";
 }

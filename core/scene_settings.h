@@ -113,7 +113,7 @@ inline constexpr Limits kFrictionLimits{0, 10, ""};
 inline constexpr Limits kRestitutionLimits{0, 1, ""};
 
 enum class EnergySplitMode { Total, PerBody };
-enum class KickDirectionMode { Paper, Opposed };
+enum class KickDirectionMode { Paper, Opposed, Force };
 // When a constraint is overloaded: "force": the norm of its force exceeds strength x area
 // (docs/physics.md section 3); "bullet_impulse": Bullet's own per-row test, any world-axis row's
 // impulse in a step reaches strength x area x h (btTypedConstraint::setBreakingImpulseThreshold),
@@ -131,7 +131,7 @@ struct SimulateSettings {
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
-    KickDirectionMode directions = KickDirectionMode::Paper;  // "paper": -(t x f) per body; "opposed": momentum-conserving
+    KickDirectionMode directions = KickDirectionMode::Paper;  // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, apart
     double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
     bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
     bool exact_energy = false;  // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E

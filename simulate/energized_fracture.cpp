@@ -36,6 +36,18 @@ double solve_magnitude(double a, double b, double e) {
     return b >= 0 ? 2 * e / (b + disc) : (disc - b) / (2 * a);
 }
 
+// Directions::Force, body a's direction: along the force the constraint applied to a, signed to
+// point away from b's centre of mass (a force exactly across the line of centres keeps its own
+// sign: the joint's release). Body b takes the negative, so the pair's momentum is unchanged.
+// A constraint that broke with no force at all gets a seeded random direction.
+Vec3 separating_force_direction(const BodyAtPivot& a, const BodyAtPivot& b, uint64_t random_key, bool* random) {
+    const double f = a.force.norm();
+    *random = !(f > 0);
+    const Vec3 along = *random ? random_orthogonal(Vec3::UnitZ(), random_key) : Vec3(a.force / f);
+    const Vec3 apart = b.r - a.r;  // c_a - c_b: the pivot is common
+    return along.dot(apart) >= 0 ? along : Vec3(-along);
+}
+
 }  // namespace
 
 double stored_energy(const Vec3& force, double stiffness) {
@@ -79,7 +91,12 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     for (int k = 0; k < 2; ++k) {
         Kick& kick = out.kick[k];
         if (!body[k]->dynamic) continue;
-        if (k == 1 && s.directions == KickDirections::Opposed && a.dynamic) {
+        if (s.directions == KickDirections::Force) {
+            bool random = false;
+            const Vec3 along_a = separating_force_direction(a, b, random_key, &random);
+            kick.direction = k == 0 ? along_a : Vec3(-along_a);
+            kick.random_direction = random;
+        } else if (k == 1 && s.directions == KickDirections::Opposed && a.dynamic) {
             kick.direction = -out.kick[0].direction;
             kick.random_direction = out.kick[0].random_direction;
         } else {
@@ -93,7 +110,7 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     // The kinetic energy body k gains from mu along its kick: mu b_k + mu^2 a_k.
     auto a_of = [&](int k) { return 0.5 / out.kick[k].effective_mass; };
     auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity - frame) : 0.0; };
-    if (both && (s.split == EnergySplit::Total || s.directions == KickDirections::Opposed)) {
+    if (both && (s.split == EnergySplit::Total || s.directions != KickDirections::Paper)) {
         // Equal magnitudes, alpha E in all: mu^2 (a_a + a_b) + mu (b_a + b_b) = alpha E.
         const double mu = solve_magnitude(a_of(0) + a_of(1), b_of(0) + b_of(1), released);
         for (int k = 0; k < 2; ++k) {

@@ -42,6 +42,11 @@
 //   Directions::Opposed (momentum-conserving variant): body a takes i_a, body b takes -i_a, with
 //     the equal magnitudes of Split::Total. Equal and opposite impulses at one point change
 //     neither linear nor angular momentum.
+//   Directions::Force (momentum-conserving): along the line of the force the constraint carried,
+//     each body away from the other: body b along +-f_b/|f_b|, the sign making it point away from
+//     a's centre of mass ((c_b - c_a) . i_b >= 0), body a opposite, equal magnitudes. A joint
+//     loaded in compression or tension is pushed open along its load; one loaded in shear (an
+//     impact's) releases across the interface, where packed neighbours do not stop the pieces.
 #pragma once
 
 #include <array>
@@ -52,7 +57,7 @@
 namespace shatter {
 
 enum class EnergySplit { Total, PerBody };
-enum class KickDirections { Paper, Opposed };
+enum class KickDirections { Paper, Opposed, Force };
 
 // One body at the breaking constraint's pivot, in world coordinates.
 struct BodyAtPivot {

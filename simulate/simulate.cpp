@@ -23,7 +23,11 @@ EnergizeSettings energize_settings(const SimulationInput& in) {
     EnergizeSettings e;
     e.alpha = in.material.alpha;
     e.split = in.simulate.energy_split == EnergySplitMode::PerBody ? EnergySplit::PerBody : EnergySplit::Total;
-    e.directions = in.simulate.directions == KickDirectionMode::Opposed ? KickDirections::Opposed : KickDirections::Paper;
+    switch (in.simulate.directions) {
+        case KickDirectionMode::Paper: e.directions = KickDirections::Paper; break;
+        case KickDirectionMode::Opposed: e.directions = KickDirections::Opposed; break;
+        case KickDirectionMode::Force: e.directions = KickDirections::Force; break;
+    }
     e.exact_energy = in.simulate.exact_energy;
     return e;
 }

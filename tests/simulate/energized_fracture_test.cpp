@@ -134,6 +134,39 @@ TEST(EnergizedFracture, OpposedKicksStillReleaseAlphaE) {
     EXPECT_NEAR(gained, k.stored_energy, 1e-12);
 }
 
+TEST(EnergizedFracture, ForceKicksPushThePiecesApartAlongTheLoadInTensionAndCompression) {
+    Bending s;  // a lies on -x of b
+    for (double sign : {1.0, -1.0}) {  // +1: a pulled towards b (tension); -1: pushed away (compression)
+        const Vec3 f = sign * s.force_on_a;
+        EnergizeSettings cfg;
+        cfg.directions = KickDirections::Force;
+        BreakKicks k = energize(at_pivot(s.a, s.pivot, f), at_pivot(s.b, s.pivot, -f), 1e4, cfg, 7);
+        EXPECT_LT((k.kick[0].direction + Vec3::UnitX()).norm(), 1e-12) << sign;  // a away from b
+        EXPECT_LT((k.kick[1].direction - Vec3::UnitX()).norm(), 1e-12) << sign;  // b away from a
+        EXPECT_FALSE(k.kick[0].random_direction);
+        // Equal and opposite at one point: no change of linear or angular momentum.
+        EXPECT_LT((k.kick[0].impulse + k.kick[1].impulse).norm(), 1e-15);
+        const double gained = kinetic_energy_gain(s.a, s.pivot - s.a.com, k.kick[0].impulse) +
+                              kinetic_energy_gain(s.b, s.pivot - s.b.com, k.kick[1].impulse);
+        EXPECT_NEAR(gained, k.stored_energy, 1e-12 * k.stored_energy) << sign;
+    }
+}
+
+TEST(EnergizedFracture, ForceKicksReleaseAShearLoadAcrossTheInterface) {
+    // An impact's load: the force across the line of centres. The joint held a up (+y) and b down;
+    // released, a goes on up and b down, along the interface rather than into each other.
+    Bending s;
+    const Vec3 f(0, 30, 0);
+    EnergizeSettings cfg;
+    cfg.directions = KickDirections::Force;
+    BreakKicks k = energize(at_pivot(s.a, s.pivot, f), at_pivot(s.b, s.pivot, -f), 1e4, cfg, 7);
+    EXPECT_LT((k.kick[0].direction - Vec3::UnitY()).norm(), 1e-12);
+    EXPECT_LT((k.kick[1].direction + Vec3::UnitY()).norm(), 1e-12);
+    // The paper's direction for the same break points into the partner (r_perp: along +x for a).
+    BreakKicks paper = energize(at_pivot(s.a, s.pivot, f), at_pivot(s.b, s.pivot, -f), 1e4, {}, 7);
+    EXPECT_GT(paper.kick[0].direction.dot(s.b.com - s.a.com), 0.5 * (s.b.com - s.a.com).norm());
+}
+
 TEST(EnergizedFracture, PureTensionKicksOrthogonalToTheForceReproducibly) {
     // A chain link pulled along the line through its centre: t x f = 0.
     Body link{0.1, box_inertia(0.1, 0.1, 0.02, 0.02), Vec3(0, 0, 0)};
