@@ -131,7 +131,9 @@ struct SimulateSettings {
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
-    KickDirectionMode directions = KickDirectionMode::Paper;  // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, apart
+    // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, never
+    // into the partner (momentum-conserving)
+    KickDirectionMode directions = KickDirectionMode::Paper;
     double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
     bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
     bool exact_energy = false;  // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E

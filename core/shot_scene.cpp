@@ -252,7 +252,9 @@ void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
     choice<EnergySplitMode>(s, "energy_split", simulate.energy_split,
                             {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}});
     choice<KickDirectionMode>(s, "directions", simulate.directions,
-                              {{"paper", KickDirectionMode::Paper}, {"opposed", KickDirectionMode::Opposed}, {"force", KickDirectionMode::Force}});
+                              {{"paper", KickDirectionMode::Paper},
+                               {"opposed", KickDirectionMode::Opposed},
+                               {"force", KickDirectionMode::Force}});
     s.number("rate_limit", simulate.rate_limit, kRateLimitLimits);
     s.boolean("rollback", simulate.rollback);
     s.boolean("exact_energy", simulate.exact_energy);

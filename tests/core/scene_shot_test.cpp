@@ -424,6 +424,7 @@ TEST(SceneSettings, OtherSectionsWriteEveryFieldWithEnumsAsStrings) {
               R"({"position":[0.0,0.0,0.0],"rotation":[0.0,0.0,0.0],"velocity":[0.0,0.0,0.0],)"
               R"("angular_velocity":[0.0,0.0,0.0],"driven":[]})");
     EXPECT_STREQ(to_string(KickDirectionMode::Opposed), "opposed");
+    EXPECT_STREQ(to_string(KickDirectionMode::Force), "force");
     EXPECT_STREQ(to_string(EnergySplitMode::Total), "total");
     EXPECT_STREQ(to_string(ShapeKind::Mesh), "mesh");
 }
