@@ -46,16 +46,15 @@ public:
     void updateAabbs() override;
 };
 
-// Whether contactPairTest found two bodies closer than a threshold (m), and the deepest point
-// (the most negative distance: the overlap; unit: m).
+// The deepest point contactPairTest found between two bodies (the most negative distance: the
+// overlap; unit: m), among points closer than a threshold (m); whether there was one.
 struct ContactFound : btCollisionWorld::ContactResultCallback {
     double threshold;
-    bool found = false;
     double deepest = std::numeric_limits<double>::infinity();
     explicit ContactFound(double t) : threshold(t) { m_closestDistanceThreshold = btScalar(t); }
+    bool found() const { return deepest < threshold; }
     btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
                              const btCollisionObjectWrapper*, int, int) override {
-        if (p.getDistance() < threshold) found = true;
         deepest = std::min(deepest, double(p.getDistance()));
         return 0;
     }

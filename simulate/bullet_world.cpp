@@ -167,7 +167,7 @@ void BulletWorld::ignore_initial_overlaps() {
             if (!a->checkCollideWith(b)) continue;  // joined: never collide while joined
             ContactFound contact(1e-4);
             m.world.contactPairTest(a, b, contact);
-            if (contact.found) m.dispatcher.ignored.insert({int(i), int(j)});
+            if (contact.found()) m.dispatcher.ignored.insert({int(i), int(j)});
         }
 }
 
