@@ -332,26 +332,28 @@ Deviation deviation(const Ensemble& run, const Ensemble& ref, const Tolerance& f
         for (const std::vector<double>* v : {&fb, &fb_ref})
             for (double x : *v)
                 if (std::isnan(x)) return dv;
-        dv.first_break = std::abs(mean_of(fb) - mean_of(fb_ref));
-        dv.tol.first_break = noise_tolerance(fb, fb_ref, floor.first_break);
-        auto broken = [](const Run& r) { return r.s.broken_fraction; };
-        dv.broken_fraction = std::abs(mean_of(run.each(broken)) - mean_of(ref.each(broken)));
-        dv.tol.broken_fraction = noise_tolerance(run.each(broken), ref.each(broken), floor.broken_fraction);
-        auto fragments = [](const Run& r) { return double(r.s.fragments); };
-        dv.fragments = std::abs(mean_of(run.each(fragments)) - mean_of(ref.each(fragments)));
-        dv.tol.fragments = noise_tolerance(run.each(fragments), ref.each(fragments), floor.fragments);
-        auto scatter = [](const Run& r) { return r.s.scatter; };
-        const double scale = std::max(mean_of(ref.each(scatter)), 1e-9);
-        dv.scatter_rel = std::abs(mean_of(run.each(scatter)) - mean_of(ref.each(scatter))) / scale;
-        dv.tol.scatter_rel = noise_tolerance(run.each(scatter), ref.each(scatter), floor.scatter_rel * scale) / scale;
-        auto kinetic = [](const Run& r) { return r.s.kinetic_after; };
-        const double k_scale = std::max(mean_of(ref.each(kinetic)), 1e-12);
-        dv.kinetic_rel = std::abs(mean_of(run.each(kinetic)) - mean_of(ref.each(kinetic))) / k_scale;
-        dv.tol.kinetic_rel = noise_tolerance(run.each(kinetic), ref.each(kinetic), floor.kinetic_rel * k_scale) / k_scale;
-        auto spread = [](const Run& r) { return r.s.spread_after; };
-        const double s_scale = std::max(mean_of(ref.each(spread)), 1e-12);
-        dv.spread_rel = std::abs(mean_of(run.each(spread)) - mean_of(ref.each(spread))) / s_scale;
-        dv.tol.spread_rel = noise_tolerance(run.each(spread), ref.each(spread), floor.spread_rel * s_scale) / s_scale;
+        // A measure's means: their gap and its noise tolerance (floor: in the measure's unit), both
+        // over `scale` (1 for the absolute measures, the finest model's mean for the relative ones).
+        auto compare = [&](auto f, double floor_abs, double scale, double* gap, double* tol) {
+            const std::vector<double> a = run.each(f), b = ref.each(f);
+            *gap = std::abs(mean_of(a) - mean_of(b)) / scale;
+            *tol = noise_tolerance(a, b, floor_abs) / scale;
+        };
+        auto compare_rel = [&](auto f, double floor_rel, double least_scale, double* gap, double* tol) {
+            const double scale = std::max(mean_of(ref.each(f)), least_scale);
+            compare(f, floor_rel * scale, scale, gap, tol);
+        };
+        compare(first, floor.first_break, 1, &dv.first_break, &dv.tol.first_break);
+        compare([](const Run& r) { return r.s.broken_fraction; }, floor.broken_fraction, 1, &dv.broken_fraction,
+                &dv.tol.broken_fraction);
+        compare([](const Run& r) { return double(r.s.fragments); }, floor.fragments, 1, &dv.fragments,
+                &dv.tol.fragments);
+        compare_rel([](const Run& r) { return r.s.scatter; }, floor.scatter_rel, 1e-9, &dv.scatter_rel,
+                    &dv.tol.scatter_rel);
+        compare_rel([](const Run& r) { return r.s.kinetic_after; }, floor.kinetic_rel, 1e-12, &dv.kinetic_rel,
+                    &dv.tol.kinetic_rel);
+        compare_rel([](const Run& r) { return r.s.spread_after; }, floor.spread_rel, 1e-12, &dv.spread_rel,
+                    &dv.tol.spread_rel);
         // Early trajectories: each run against the finest model's run from the same drop, against
         // how far the finest model's other drops land from its first (what a nudge alone does).
         std::vector<double> d, d_ref;
