@@ -23,36 +23,58 @@ namespace fs = std::filesystem;
 using testing_support::run_shatter;
 using testing_support::TempDir;
 
-const std::string kGolden = SHATTER_SOURCE_DIR "/tests/golden/scenes/beam-strip.png";
+std::string golden_of(const std::string& shot) {
+    return SHATTER_SOURCE_DIR "/tests/golden/scenes/" + shot + "-strip.png";
+}
+
+// Runs the shot's sweep over alpha 0 and `alpha` with `shatter batch` in dir, at 240 x 135 for
+// `duration` s, from the batch file dir/SHOT.toml; returns its strip at strip_time (unit: s), or
+// an empty path, with a failure, when the batch failed.
+std::string run_sweep(TempDir& dir, const std::string& shot, double alpha, double strip_time, double duration) {
+    const std::string batch = dir.write(shot + ".toml", fmt::format(R"([[job]]
+shot = "{}/assets/{}.toml"
+set = {{ "render.width" = 240, "render.height" = 135, "render.shadow_map" = 1024, "simulate.duration" = {} }}
+sweep = {{ "material.alpha" = [0, {}] }}
+strip_time = {}
+)", SHATTER_SOURCE_DIR, shot, duration, alpha, strip_time));
+    const auto r = run_shatter({"batch", batch, "-o", dir.file("out")});
+    const std::string strip = dir.file("out/" + shot + "/" + shot + ".strip.png");
+    if (r.exit_code != 0 || !fs::exists(strip)) {
+        ADD_FAILURE() << "shatter batch " << batch << " (exit " << r.exit_code << ")\n" << r.out << r.err;
+        return "";
+    }
+    return strip;
+}
+
+// With SHATTER_UPDATE_GOLDEN set, copies the strip over the golden and says so.
+bool updated_golden(const std::string& strip, const std::string& golden) {
+    if (!std::getenv("SHATTER_UPDATE_GOLDEN")) return false;
+    fs::create_directories(fs::path(golden).parent_path());
+    fs::copy_file(strip, golden, fs::copy_options::overwrite_existing);
+    return true;
+}
+
+// `shatter diff` of the strip against the golden at the render goldens' tolerance (exit 0: alike).
+testing_support::CommandResult diff_strip(const std::string& golden, const std::string& strip) {
+    return run_shatter({"diff", golden, strip, "--max-rmse", "1.5", "--min-ssim", "0.98", "--threshold", "24",
+                        "--max-fraction", "0.005"});
+}
 
 TEST(SceneStrips, TheBeamSweepLooksAsCommitted) {
     TempDir dir;
-    const std::string batch = dir.write("beam.toml", R"([[job]]
-shot = ")" SHATTER_SOURCE_DIR R"(/assets/beam.toml"
-set = { "render.width" = 240, "render.height" = 135, "render.shadow_map" = 1024, "simulate.duration" = 0.8 }
-sweep = { "material.alpha" = [0, 1.5] }
-strip_time = 0.8
-)");
-    auto r = run_shatter({"batch", batch, "-o", dir.file("out")});
-    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    const std::string strip = dir.file("out/beam/beam.strip.png");
-    ASSERT_TRUE(fs::exists(strip));
-    if (std::getenv("SHATTER_UPDATE_GOLDEN")) {
-        fs::create_directories(fs::path(kGolden).parent_path());
-        fs::copy_file(strip, kGolden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "golden re-made: " << kGolden << "; look at it before committing";
-    }
-    auto d = run_shatter({"diff", kGolden, strip, "--max-rmse", "1.5", "--min-ssim", "0.98", "--threshold", "24",
-                          "--max-fraction", "0.005"});
+    const std::string golden = golden_of("beam");
+    const std::string strip = run_sweep(dir, "beam", 1.5, 0.8, 0.8);
+    ASSERT_FALSE(strip.empty());
+    if (updated_golden(strip, golden)) GTEST_SKIP() << "golden re-made: " << golden << "; look at it before committing";
+    auto d = diff_strip(golden, strip);
     EXPECT_EQ(d.exit_code, 0) << d.out << d.err;
 
     // A deliberate change of the look fails it: the alpha = 0 beam where alpha = 1.5 should be
     // (the strip is made again from the frames; every run is up to date).
     fs::copy_file(dir.file("out/beam/alpha-0/frames/frame_00024.png"),
                   dir.file("out/beam/alpha-1.5/frames/frame_00024.png"), fs::copy_options::overwrite_existing);
-    ASSERT_EQ(run_shatter({"batch", batch, "-o", dir.file("out")}).exit_code, 0);
-    d = run_shatter({"diff", kGolden, strip, "--max-rmse", "1.5", "--min-ssim", "0.98", "--threshold", "24",
-                     "--max-fraction", "0.005"});
+    ASSERT_EQ(run_shatter({"batch", dir.file("beam.toml"), "-o", dir.file("out")}).exit_code, 0);
+    d = diff_strip(golden, strip);
     EXPECT_EQ(d.exit_code, 1) << d.out << d.err;
 }
 
@@ -67,25 +89,12 @@ class PaperSceneStrips : public ::testing::TestWithParam<StripCase> {};
 
 TEST_P(PaperSceneStrips, LookAsCommitted) {
     const StripCase& c = GetParam();
-    const std::string name = c.shot;
-    const std::string golden = SHATTER_SOURCE_DIR "/tests/golden/scenes/" + name + "-strip.png";
     TempDir dir;
-    const std::string batch = dir.write(name + ".toml", fmt::format(R"([[job]]
-shot = "{}/assets/{}.toml"
-set = {{ "render.width" = 240, "render.height" = 135, "render.shadow_map" = 1024, "simulate.duration" = {} }}
-sweep = {{ "material.alpha" = [0, {}] }}
-strip_time = {}
-)", SHATTER_SOURCE_DIR, name, c.strip_time + 0.05, c.alpha, c.strip_time));
-    auto r = run_shatter({"batch", batch, "-o", dir.file("out")});
-    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    const std::string strip = dir.file("out/" + name + "/" + name + ".strip.png");
-    ASSERT_TRUE(fs::exists(strip));
-    if (std::getenv("SHATTER_UPDATE_GOLDEN")) {
-        fs::copy_file(strip, golden, fs::copy_options::overwrite_existing);
-        GTEST_SKIP() << "golden re-made: " << golden << "; look at it before committing";
-    }
-    auto d = run_shatter({"diff", golden, strip, "--max-rmse", "1.5", "--min-ssim", "0.98", "--threshold", "24",
-                          "--max-fraction", "0.005"});
+    const std::string golden = golden_of(c.shot);
+    const std::string strip = run_sweep(dir, c.shot, c.alpha, c.strip_time, c.strip_time + 0.05);
+    ASSERT_FALSE(strip.empty());
+    if (updated_golden(strip, golden)) GTEST_SKIP() << "golden re-made: " << golden << "; look at it before committing";
+    const auto d = diff_strip(golden, strip);
     EXPECT_EQ(d.exit_code, 0) << d.out << d.err;
 }
 
