@@ -1,6 +1,7 @@
-// Energized fracture: the contribution of "Energized Rigid Body Fracture" (Xiao Li, Andrew
-// Andrews, Ben Jones, Adam Bargteil; Proc. ACM Comput. Graph. Interact. Tech. 1(1), 2018), free
-// of any physics engine (Eigen only). simulate/bullet_world.cpp is the adapter that feeds it.
+// Energized fracture: the contribution of Xiaokai Li, Sheldon Andrews, Ben Jones and Adam W.
+// Bargteil, "Energized Rigid Body Fracture", Proc. ACM Comput. Graph. Interact. Tech. (PACMCGIT)
+// 1(1), article 9, 2018, doi:10.1145/3203207. Free of any physics engine (Eigen only);
+// simulate/bullet_world.cpp is the adapter that feeds it.
 //
 // A breaking constraint stored elastic energy in its compliance; plain deletion throws that
 // energy away. The paper gives it back as kinetic energy:
