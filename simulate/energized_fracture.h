@@ -18,16 +18,20 @@
 // A body at rest that takes the impulse mu along i at r gains kinetic energy mu^2 / (2 m_G).
 // A moving body gains mu (i . v_p) + mu^2 / (2 m_G), v_p the velocity of its point at the
 // pivot: the paper's magnitudes then add more or less than alpha E, by a cross term that depends
-// on the frame of reference (measured: 10x alpha E for a bunny breaking on impact). With
-// exact_energy the magnitudes solve the quadratic instead, so that the kinetic energy gained is
-// alpha E (or the split's share) whatever the bodies' motion; directions are unchanged.
-// The quadratic is solved in the pair's frame: v_p is taken relative to the velocity V of the
-// two bodies' common centre of mass (pair_frame_velocity). Released energy is internal: it should
-// not depend on how fast the pair as a whole moves. Solved in the lab frame instead, a pair falling
-// at speed u whose kicks point up (the paper's directions in a bending break) needs mu ~ 2 m_G u:
-// the kicks reflect the fall, and a dropped plate stopped in mid-air at alpha >= 0.5 (measured on
-// assets/plate.toml). In the lab frame the impulses add alpha E + dP . V, dP their net momentum:
-// zero for Directions::Opposed, the "momentum work" of the paper's directions otherwise.
+// on the frame of reference and can dominate on impact (docs/physics.md section 4 has the
+// measurements). With exact_energy the magnitudes solve the quadratic instead,
+//
+//   a mu^2 + b mu = alpha E,   a = 1/2 sum 1/m_G,   b = sum i . (v_p - V)   (sums over the bodies)
+//
+// so that the kinetic energy gained is alpha E (or the split's share) whatever the bodies'
+// motion; directions are unchanged. The quadratic is solved in the pair's frame: v_p is taken
+// relative to the velocity V of the two bodies' common centre of mass (pair_frame_velocity).
+// Released energy is internal: it should not depend on how fast the pair as a whole moves.
+// Solved in the lab frame instead (V = 0), a pair falling at speed u whose kicks point up (the
+// paper's directions in a bending break) has b ~ -2u and needs mu ~ 2 m_G u: the kicks reflect
+// the fall and can stop a falling object in mid-air. In the lab frame the impulses add
+// alpha E + dP . V, dP their net momentum: zero for Directions::Opposed, the "momentum work" of
+// the paper's directions otherwise.
 //
 // How E is shared (the paper says "the process is similar for the second body"):
 //   Split::Total (default): the two bodies take impulses of EQUAL magnitude mu with
@@ -117,8 +121,8 @@ Vec3 kick_direction(const Vec3& force, const Vec3& torque, const Vec3& r, uint64
 // With exact_energy the energy is counted in the frame moving at `frame` (by default
 // pair_frame_velocity(a, b)). When several constraints break in one step, the simulation passes
 // the pair's velocity from before any of that step's kicks: the paper's kicks do not conserve
-// momentum, and each break's frame would otherwise move with the kicks before it (four breaks of
-// the beam at rest lost 0.23 of 0.55 J that way).
+// momentum, and each break's frame would otherwise move with the kicks before it (docs/physics.md
+// section 4 measures what that loses on the beam).
 BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& settings,
                     uint64_t random_key);
 BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& settings,
