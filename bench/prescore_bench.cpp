@@ -1,6 +1,7 @@
 // prescore benchmark: the time of each phase for the bunny at several resolutions, from the
 // default (~3k tets) to ~100k tets, so that the growth with tet count shows. Prints CSV to
-// stdout; never fails on time. Goal (issue 2): the default bunny, load to written file, < 1 s.
+// stdout; never fails on time. Goal (docs/benchmarks.md): the default bunny, load to written
+// file, < 1 s.
 #include <chrono>
 #include <cstdio>
 #include <map>

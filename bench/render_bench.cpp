@@ -3,7 +3,8 @@
 // MSAA, PNG writing included; and where the time goes (draw = shadow + scene + resolve passes
 // rasterized, readback, PNG encode, file write). Rows for the PNG writer on the main thread
 // ("serial") and overlapped on a second thread ("overlap", what `shatter render` does), and for
-// cheaper settings. Prints CSV; never fails on time. Goal (issue 4): >= 20 frames/s in total.
+// cheaper settings. Prints CSV; never fails on time. Goal (docs/benchmarks.md): >= 20 frames/s
+// in total.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-// study: accuracy against cost for shatter's simulation (issue 7; docs/accuracy.md shows and
+// study: accuracy against cost for shatter's simulation (docs/accuracy.md shows and
 // explains the results). Writes CSV into --out; scripts/study_charts.py draws the charts.
 //
 //   study [--quick] [--out DIR] [--refs DIR] [--section NAME ...] [--scene NAME ...] [--no-render]
@@ -58,9 +58,9 @@ bool check_headlines(const Headlines& h) {
         check(s.shipped_worst <= 1,
               fmt::format("smallest model: assets/{}.toml as shipped is within tolerance of its finest model: largest "
                           "deviation / tolerance = {:.3g} (<= 1)", s.shot, s.shipped_worst));
-    // Until the pair-frame fix (docs/physics.md section 4) energized cascaded in 6 of these cells
-    // (mass ratio 10, alpha 0.5 to 100) and this checked that the rate limit rescued them; now it
-    // checks that there is nothing to rescue. The other methods are printed, not checked.
+    // Energized must be stable in every cell where plain breaking is (docs/accuracy.md section 6;
+    // it is, since exact energy is counted in the pair's frame, docs/physics.md section 4). The
+    // other methods are printed, not checked.
     size_t energized_there = 0;
     std::string others;
     for (const auto& [m, n] : h.stable_where_plain) {

@@ -1,4 +1,4 @@
-// The accuracy and cost study (issue 7, docs/accuracy.md): what the study runs and how it scores
+// The accuracy and cost study (docs/accuracy.md): what the study runs and how it scores
 // a run. Shared by bench/study*.cpp.
 //
 // Every scene is built here from the scene generators (scenes/paper_scenes.h) and prescore with

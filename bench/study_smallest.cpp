@@ -1,4 +1,4 @@
-// The smallest model that serves (issue 7, point 7; docs/accuracy.md section 7).
+// The smallest model that serves (docs/accuracy.md section 7).
 //
 // Unlike the other sections, this one reads the shipped shots (assets/<shot>.toml): its question
 // is whether their model-size settings can be made smaller. Per shot, with the compared window

@@ -1,4 +1,4 @@
-// Fewer constraints per piece pair: the smallest model that serves (issue 7's "constraints per
+// Fewer constraints per piece pair: the smallest model that serves (the study's "constraints per
 // piece pair" knob). A pair's constraints are thinned to at most `max_per_pair` by farthest-point
 // sampling over their pivots (starting from the constraint of largest area; ties to the lower
 // vertex index), and each dropped constraint's area goes to the nearest kept one, so a pair's

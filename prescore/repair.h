@@ -5,7 +5,7 @@
 // The wrap is a new surface that encloses the input at distance `offset` and cannot pass
 // through gaps narrower than about `alpha`: holes, cracks, self-intersections and non-manifold
 // parts disappear. The price is shape: the result is inflated by about the offset and
-// features smaller than alpha are filled. Measured (PHYSICS.md): bunny, alpha = diag/50,
+// features smaller than alpha are filled. Measured (docs/physics.md): bunny, alpha = diag/50,
 // offset = diag/1000: 1.5 s, +3.2% volume. Smaller alpha costs more time and more triangles.
 #pragma once
 

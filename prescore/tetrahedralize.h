@@ -26,7 +26,7 @@ struct TetrahedralizeSettings {
     double feature_min_length = 0;      // shorter creases are not protected (unit: m; the cell size applies too)
 };
 
-// The default resolution: the bunny (PHYSICS.md) gets a few thousand tets. Measured on the
+// The default resolution: the bunny (docs/physics.md) gets a few thousand tets. Measured on the
 // glmark2 bunny (scale 1, diagonal 3.21 m; 2-core machine, times include building the domain):
 //   R = 10: 929 tets, 0.08 s, volume -4.1%      R = 40: 16,339 tets, 0.25 s, -0.8%
 //   R = 20: 3,323 tets, 0.13 s, -1.8%           R = 76: 98,406 tets, 1.2 s, -0.3%

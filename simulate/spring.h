@@ -15,8 +15,8 @@
 // CFM for all three would make the spring stiffer along some axes than others, so
 // CompliantPointConstraint sets each row's CFM from its own w, every step.
 //
-// The solver converges only for CFM < 1 (PHYSICS.md: stiffness ratio 0.997 at CFM 0.5, 0.79 at
-// 0.8, NaN above 1): a spring too soft for its bodies at that step is refused.
+// The solver converges only for CFM < 1 (docs/physics.md sections 1 and 8: stiffness ratio 0.997
+// at CFM 0.5, 0.79 at 0.8, NaN above 1): a spring too soft for its bodies at that step is refused.
 #pragma once
 
 #include "core/geometry.h"

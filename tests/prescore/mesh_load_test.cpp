@@ -1,6 +1,6 @@
 // load_mesh: every format gives the same unit cube, scale is applied, meshes are merged, the
-// real bunny loads with the counts PHYSICS.md gives, and bad files are BadInput errors that
-// name the file.
+// real bunny loads with the counts docs/physics.md section 8 gives, and bad files are BadInput
+// errors that name the file.
 #include <gtest/gtest.h>
 
 #include <chrono>
