@@ -28,7 +28,8 @@ struct PrescoreFlags {
     std::optional<uint64_t> seed;
     std::optional<std::string> hollow;
     bool solid = false;
-    std::optional<double> resolution, density, scale, wrap_alpha, wrap_offset;
+    std::optional<double> resolution, density, scale, size, wrap_alpha, wrap_offset;
+    bool no_adapt = false;
     std::optional<std::string> collision_tolerance;
     std::optional<uint32_t> collision_parts, constraints_per_pair;
     std::optional<std::string> repair;
@@ -47,6 +48,7 @@ void refuse_mesh_flags(const PrescoreFlags& f) {
     const std::vector<std::pair<const char*, bool>> given = {
         {"--pieces", bool(f.pieces)}, {"--seed", bool(f.seed)}, {"--hollow", bool(f.hollow)}, {"--solid", f.solid},
         {"--resolution", bool(f.resolution)}, {"--density", bool(f.density)}, {"--scale", bool(f.scale)},
+        {"--size", bool(f.size)}, {"--no-adapt", f.no_adapt},
         {"--wrap-alpha", bool(f.wrap_alpha)}, {"--wrap-offset", bool(f.wrap_offset)},
         {"--collision-tolerance", bool(f.collision_tolerance)}, {"--collision-max-parts", bool(f.collision_parts)},
         {"--constraints-per-pair", bool(f.constraints_per_pair)}, {"--repair", bool(f.repair)}};
@@ -73,7 +75,17 @@ Shot shot_from(const PrescoreFlags& f) {
     }
     MeshSettings& m = shot.mesh;
     PrescoreSettings& p = shot.prescore;
-    override_checked(m.scale, f.scale, "--scale", kScaleLimits);
+    if (f.scale) {
+        double scale = 0;
+        override_checked(scale, f.scale, "--scale", kScaleLimits);
+        m.scale = scale;
+    }
+    if (f.size) {
+        double size = 0;
+        override_checked(size, f.size, "--size", kSizeLimits);
+        m.size = size;
+    }
+    if (f.no_adapt) m.adapt = false;
     override_checked(m.wrap_alpha, f.wrap_alpha, "--wrap-alpha", kWrapAlphaLimits);
     override_checked(m.wrap_offset, f.wrap_offset, "--wrap-offset", kWrapOffsetLimits);
     if (f.repair) m.repair = *parse_repair_mode(*f.repair);
@@ -172,7 +184,14 @@ RunCommand add_prescore_command(CLI::App& root) {
     c->add_option("--resolution", flags->resolution,
                   option_help("tet size = bounding-box diagonal / resolution", "", fmt::format("{:g}", p.resolution)));
     c->add_option("--density", flags->density, option_help("material density", "kg/m^3", fmt::format("{:g}", p.density)));
-    c->add_option("--scale", flags->scale, option_help("metres per mesh unit", "m", fmt::format("{:g}", m.scale)));
+    c->add_option("--scale", flags->scale,
+                  option_help("metres per mesh unit", "m", "the file's units (glTF: 1; FBX, Collada: theirs), else --size"));
+    c->add_option("--size", flags->size,
+                  option_help("make the longest side of the mesh's bounding box this long (wins over --scale)", "m",
+                              fmt::format("{:g} for a file without units", kDefaultSize)));
+    c->add_flag("--no-adapt", flags->no_adapt,
+                "refuse a mesh whose tets lose parts instead of raising the resolution, thickening thin walls and "
+                "merging slivers (the default adapts, and logs and records each choice)");
     c->add_option("--repair", flags->repair,
                   option_help("alpha-wrap the mesh: auto (only when it cannot be tetrahedralized as it is), always, "
                               "never (refuse such meshes)", "", to_string(m.repair)))

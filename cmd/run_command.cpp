@@ -1,4 +1,4 @@
-// shatter run SHOT [-o DIR] [--set SECTION.KEY=VALUE]... [--stages LIST] [--chunk I/N] [--cache DIR]
+// shatter run SHOT|MESH [-o DIR] [--set SECTION.KEY=VALUE]... [--stages LIST] [--chunk I/N] [--cache DIR]
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -53,7 +53,10 @@ RunCommand add_run_command(CLI::App& root) {
     CLI::App* c = root.add_subcommand(
         "run", "Run a shot from mesh to movie: prescore, simulate, render, encode (MP4), contact sheet, energy plot and "
                ".glb, into one output folder. Stages that are up to date are skipped; a killed run resumes.");
-    c->add_option("shot", f->options.shot, "the shot file (.toml; docs/shot.md)")->required();
+    c->add_option("shot", f->options.shot,
+                  "the shot file (.toml; docs/shot.md), or a mesh file in any format assimp reads (OBJ, PLY, STL, OFF, "
+                  "glTF/GLB, 3DS, FBX, ...) to run the default shot on it (a 1.5 m drop, docs/shot.md)")
+        ->required();
     c->add_option("-o,--output", f->options.output_dir, option_help("the output folder", "", "out/SHOT-NAME"));
     c->add_option("--set", f->options.overrides,
                   "override a shot setting, SECTION.KEY=VALUE, written as in the shot file (repeatable), e.g. "

@@ -73,11 +73,16 @@ void check_collision_tolerance(const std::string& where, const Length& tolerance
 }
 
 nlohmann::ordered_json to_json(const MeshSettings& s) {
-    return {{"path", s.path},
-            {"scale", s.scale},
-            {"repair", to_string(s.repair)},
-            {"wrap_alpha", s.wrap_alpha},
-            {"wrap_offset", s.wrap_offset}};
+    // "size" and "adapt" appear only when they differ from the defaults, so that a model made
+    // with a given scale keeps the bytes it had before they existed.
+    nlohmann::ordered_json j = {{"path", s.path}};
+    j["scale"] = s.scale ? nlohmann::ordered_json(*s.scale) : nlohmann::ordered_json("auto");
+    if (s.size) j["size"] = *s.size;
+    j["repair"] = to_string(s.repair);
+    j["wrap_alpha"] = s.wrap_alpha;
+    j["wrap_offset"] = s.wrap_offset;
+    if (!s.adapt) j["adapt"] = false;
+    return j;
 }
 
 nlohmann::ordered_json to_json(const PrescoreSettings& s) {

@@ -35,14 +35,21 @@ enum class RepairMode { Auto, Always, Never };
 const char* to_string(RepairMode mode);
 std::optional<RepairMode> parse_repair_mode(const std::string& text);
 
+// How big the object is: `size` (its longest bounding-box side) wins over `scale`; with neither,
+// the file's own units (glTF: metres; FBX, Collada: their unit scale), and for a file without
+// units (OBJ, STL, PLY, OFF, ...) the object is made kDefaultSize long.
 struct MeshSettings {
     std::string path;                    // the mesh file; in a shot, relative to the shot's folder
-    double scale = 1.0;                  // metres per mesh unit (unit: m)
+    std::optional<double> scale;         // metres per mesh unit (unit: m); unset: from the file or size
+    std::optional<double> size;          // the longest side of the bounding box (unit: m); unset: scale
     RepairMode repair = RepairMode::Auto;  // auto: alpha-wrap only meshes Mesh_3 cannot take
     double wrap_alpha = 0.02;            // alpha-wrap ball radius, fraction of the diagonal
     double wrap_offset = 0.001;          // alpha-wrap offset, fraction of the diagonal
+    bool adapt = true;                   // raise the resolution, thicken thin walls, merge slivers (false: refuse)
 };
+inline constexpr double kDefaultSize = 0.3;  // (unit: m) a unitless mesh's longest side
 inline constexpr Limits kScaleLimits{1e-9, 1e9, "m per mesh unit"};
+inline constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
 inline constexpr Limits kWrapAlphaLimits{1e-4, 0.5, "of the diagonal"};
 inline constexpr Limits kWrapOffsetLimits{1e-6, 0.1, "of the diagonal"};
 

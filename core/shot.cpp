@@ -17,7 +17,10 @@ void read_mesh(TomlSection& s, MeshSettings& mesh, const std::string& shot_path)
         std::filesystem::path p(mesh.path);
         if (p.is_relative()) mesh.path = (std::filesystem::path(shot_path).parent_path() / p).lexically_normal().string();
     }
-    s.number("scale", mesh.scale, kScaleLimits);
+    double number = 0;
+    if (s.number("scale", number, kScaleLimits)) mesh.scale = number;
+    if (s.number("size", number, kSizeLimits)) mesh.size = number;
+    s.boolean("adapt", mesh.adapt);
     std::string repair;
     if (s.text("repair", repair)) {
         auto mode = parse_repair_mode(repair);
@@ -117,8 +120,9 @@ void apply_shot_overrides(toml::table& root, const std::vector<std::string>& ove
     }
 }
 
-Shot load_shot(const std::string& path, const std::vector<std::string>& overrides) {
-    toml::table root = parse_toml_file(path);
+namespace {
+
+Shot read_shot(toml::table& root, const std::string& path, const std::vector<std::string>& overrides) {
     apply_shot_overrides(root, overrides);
     Shot shot;
     shot.path = path;
@@ -149,6 +153,27 @@ Shot load_shot(const std::string& path, const std::vector<std::string>& override
     read("render", [&](TomlSection& s) { read_render_section(s, shot.render); });
     top.finish();
     return shot;
+}
+
+}  // namespace
+
+Shot load_shot(const std::string& path, const std::vector<std::string>& overrides) {
+    toml::table root = parse_toml_file(path);
+    return read_shot(root, path, overrides);
+}
+
+Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides) {
+    toml::table root = toml::parse(std::string_view(kDefaultShot), std::string_view("the default shot"));
+    // The mesh path is taken as given (relative to the current folder), not as a shot's
+    // relative path; the "path" key of an override still applies on top.
+    root.insert_or_assign("mesh", toml::table{});
+    Shot shot = read_shot(root, "", overrides);
+    if (shot.mesh.path.empty()) shot.mesh.path = mesh_path;
+    return shot;
+}
+
+Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides) {
+    return is_shot_path(path) ? load_shot(path, overrides) : default_shot_for_mesh(path, overrides);
 }
 
 }  // namespace shatter

@@ -48,4 +48,16 @@ void apply_shot_overrides(toml::table& root, const std::vector<std::string>& ove
 // True when `path` names a shot file (by its extension, .toml) rather than a mesh.
 bool is_shot_path(const std::string& path);
 
+// The default shot, for a mesh given without a shot (`shatter run MESH`): assets/bunny.toml's
+// settings without its mesh path, size and camera (a test keeps the two in step). The mesh gets
+// the default size (core/settings.h) unless it has units, and the camera frames the animation.
+extern const char* const kDefaultShot;
+
+// The default shot on `mesh_path` (taken relative to the current folder), with `overrides`
+// applied as load_shot applies them.
+Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides = {});
+
+// load_shot for a shot file (.toml), default_shot_for_mesh for anything else.
+Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides = {});
+
 }  // namespace shatter

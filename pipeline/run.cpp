@@ -105,7 +105,7 @@ class Runner {
 public:
     explicit Runner(const RunOptions& options)
         : options_(options),
-          shot_(load_shot(options.shot, options.overrides)),
+          shot_(load_shot_or_mesh(options.shot, options.overrides)),
           dir_(options.output_dir.empty() ? default_output_dir(options.shot) : options.output_dir),
           name_(fs::path(options.shot).stem().string()),
           stamps_(dir_.string()),

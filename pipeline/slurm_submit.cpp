@@ -62,7 +62,7 @@ public:
         sub_.label = std::move(label);
         sub_.run = run;
         shatter_ = options.shatter.empty() ? own_executable() : absolute(options.shatter);
-        const Shot shot = load_shot(run.shot, run.overrides);  // bad input stops here, before any job
+        const Shot shot = load_shot_or_mesh(run.shot, run.overrides);  // bad input stops here, before any job
         sub_.frames = frame_count(shot.simulate);
         const uint32_t wanted = options.chunks ? options.chunks : (sub_.frames + 29) / 30;
         sub_.chunks = std::clamp<uint32_t>(wanted, 1, std::max<uint32_t>(sub_.frames, 1));
@@ -235,7 +235,7 @@ RunSubmission submit_run(const std::string& label, const RunOptions& run, const 
 std::vector<RunSubmission> submit_batch(const BatchFile& batch, const SubmitOptions& options, SlurmJob* sweep) {
     // Every shot is read before the first job goes out.
     for (const BatchJob& job : batch.jobs)
-        for (const BatchRun& r : job.runs) (void)load_shot(job.shot, r.overrides);
+        for (const BatchRun& r : job.runs) (void)load_shot_or_mesh(job.shot, r.overrides);
     std::vector<RunSubmission> out;
     std::vector<std::string> finish_ids;
     for (const BatchJob& job : batch.jobs)

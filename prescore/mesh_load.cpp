@@ -5,16 +5,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <poll.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
+#include <cctype>
 #include <cmath>
-#include <csignal>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "prescore/isolated.h"
 #include "prescore/ply_header.h"
 
 namespace shatter {
@@ -177,8 +172,32 @@ void check_scale(const std::string& path, double scale) {
     }
 }
 
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// The metres per unit a file states, or 0 when its format has no units. glTF is in metres by
+// its specification; assimp applies a Collada file's <unit meter> to the root node, so its
+// coordinates arrive in metres; an FBX file records its unit in centimetres (UnitScaleFactor).
+double file_units(const aiScene& scene, const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".gltf" || ext == ".glb" || ext == ".dae" || ext == ".zae") return 1.0;
+    if (ext == ".fbx") {
+        double factor = 0;
+        float factor_f = 0;
+        if (scene.mMetaData != nullptr) {
+            if (!scene.mMetaData->Get("UnitScaleFactor", factor) && scene.mMetaData->Get("UnitScaleFactor", factor_f))
+                factor = factor_f;
+        }
+        return std::isfinite(factor) && factor > 0 ? factor * 0.01 : 0.01;
+    }
+    return 0;
+}
+
 // assimp's import and our merge, in this process.
-TriangleMesh import_in_process(const std::string& path) {
+LoadedMesh import_in_process(const std::string& path) {
     Assimp::Importer importer;
     // Drop every per-vertex attribute except the position so JoinIdenticalVertices joins on
     // position alone (the OBJ loader un-shares vertices: the bunny has 208,998 before joining).
@@ -202,62 +221,60 @@ TriangleMesh import_in_process(const std::string& path) {
                               " meshes)",
                           "give a file with a surface mesh; points and lines are ignored");
     }
-    scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
-                                         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    // The components shatter does not use (animations, bones, cameras, ...) go first, in a pass of
+    // their own: assimp's validation refuses some animated or skinned files (.b3d, .fbx, .dae)
+    // for their animation data alone, and only the static mesh matters here.
+    scene = importer.ApplyPostProcessing(aiProcess_RemoveComponent);
+    if (scene != nullptr)
+        scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                             aiProcess_JoinIdenticalVertices);
     if (scene == nullptr) {
         throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), format_fix);
     }
 
     Merger merger(path);
     if (scene->mRootNode != nullptr) merger.add_node(*scene, *scene->mRootNode, Mat4::Identity());
-    TriangleMesh mesh = merger.take();
-    if (mesh.triangles.empty()) {
+    LoadedMesh loaded{merger.take(), file_units(*scene, path)};
+    if (loaded.mesh.triangles.empty()) {
         throw_input_error(path, "mesh file has no triangles (only points and lines)",
                           "give a file with a surface mesh; points and lines are ignored");
     }
-    return mesh;
+    return loaded;
 }
 
-// Debian's assimp 5.2 crashes (SIGSEGV) on some malformed files (found by tests/fuzz/mesh_fuzz.cpp:
-// an OFF face with an index far out of range; PLY headers, see ply_header.h), and a library crash
-// must not end `shatter prescore` with a signal. So the import runs in a child process (fork), which
-// sends the merged mesh, or its Error's message, back through a pipe; a child that dies is a bad
-// file (exit code 3) whose message says the reader crashed. The cost is one fork per mesh.
-// A reader can also spin for ever (assimp's PLY reader did, on a header with no end_header; see
-// ply_header.h): a child that has not finished by its deadline is killed and the file refused
-// the same way, so that an unattended batch never hangs on one mesh.
-bool write_all(int fd, const void* data, size_t n) {
-    const char* p = static_cast<const char*>(data);
-    while (n > 0) {
-        const ssize_t w = ::write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w, n -= size_t(w);
-    }
-    return true;
-}
-
-[[noreturn]] void child_import(const std::string& path, int fd) {
-    // A crash in the child ends it with the signal, which the parent reports; no handler of the
-    // parent's (a sanitizer's, a crash reporter's) runs in the child.
-    for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(s, SIG_DFL);
+// The import runs in a child process (prescore/isolated.h): Debian's assimp 5.2 crashes (SIGSEGV)
+// on some malformed files (found by tests/fuzz/mesh_fuzz.cpp: an OFF face with an index far out
+// of range; PLY headers, see ply_header.h), and its PLY reader spun for ever on a header with no
+// end_header. A child that dies or passes its deadline is a bad file (exit code 3) whose message
+// says the reader crashed or did not finish.
+std::string serialize(const LoadedMesh& loaded) {
+    const TriangleMesh& m = loaded.mesh;
+    const uint64_t nv = m.vertices.size(), nt = m.triangles.size();
     std::string out;
-    try {
-        const TriangleMesh m = import_in_process(path);
-        const uint64_t nv = m.vertices.size(), nt = m.triangles.size();
-        out.push_back('M');
-        out.append(reinterpret_cast<const char*>(&nv), 8);
-        for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
-        out.append(reinterpret_cast<const char*>(&nt), 8);
-        out.append(reinterpret_cast<const char*>(m.triangles.data()), nt * sizeof(Tri));
-    } catch (const Error& e) {
-        out = std::string("E") + e.what();
-    } catch (const std::bad_alloc&) {
-        out = "A";
-    } catch (...) {
-        ::_exit(70);
-    }
-    ::_exit(write_all(fd, out.data(), out.size()) ? 0 : 71);
+    out.append(reinterpret_cast<const char*>(&loaded.metres_per_unit), 8);
+    out.append(reinterpret_cast<const char*>(&nv), 8);
+    for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
+    out.append(reinterpret_cast<const char*>(&nt), 8);
+    out.append(reinterpret_cast<const char*>(m.triangles.data()), nt * sizeof(Tri));
+    return out;
+}
+
+LoadedMesh deserialize(const std::string& bytes) {
+    LoadedMesh loaded;
+    TriangleMesh& m = loaded.mesh;
+    uint64_t nv = 0, nt = 0;
+    size_t at = 0;
+    std::memcpy(&loaded.metres_per_unit, bytes.data() + at, 8);
+    at += 8;
+    std::memcpy(&nv, bytes.data() + at, 8);
+    at += 8;
+    m.vertices.resize(nv);
+    for (Vec3& v : m.vertices) std::memcpy(v.data(), bytes.data() + at, 24), at += 24;
+    std::memcpy(&nt, bytes.data() + at, 8);
+    at += 8;
+    m.triangles.resize(nt);
+    std::memcpy(m.triangles.data(), bytes.data() + at, nt * sizeof(Tri));
+    return loaded;
 }
 
 // How long the reader may take: 120 s plus 10 s per MB, far beyond any real import (the bunny,
@@ -274,76 +291,22 @@ double import_deadline_seconds(const std::string& path) {
     return 120.0 + 10.0 * (ec ? 0.0 : double(bytes) / 1e6);
 }
 
-TriangleMesh import_isolated(const std::string& path, const std::string& format_fix) {
-    int fds[2];
-    if (::pipe(fds) != 0) return import_in_process(path);
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid < 0) {
-        ::close(fds[0]);
-        ::close(fds[1]);
-        return import_in_process(path);
-    }
-    if (pid == 0) {
-        ::close(fds[0]);
-        child_import(path, fds[1]);
-    }
-    ::close(fds[1]);
-    std::string bytes;
-    char buf[1 << 16];
+LoadedMesh import_isolated(const std::string& path, const std::string& format_fix) {
     const double limit = import_deadline_seconds(path);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
-    bool timed_out = false;
-    for (;;) {
-        const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-        pollfd p{fds[0], POLLIN, 0};
-        const int ready = left > 0 ? ::poll(&p, 1, int(std::min(left * 1e3 + 1, 60e3))) : 0;
-        if (ready < 0 && errno == EINTR) continue;
-        if (ready == 0) {
-            if (left > 0) continue;  // a poll slice of at most a minute ended: look at the clock again
-            timed_out = true;
-            ::kill(pid, SIGKILL);
-            break;
-        }
-        const ssize_t r = ::read(fds[0], buf, sizeof buf);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) break;
-        bytes.append(buf, size_t(r));
-    }
-    ::close(fds[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (timed_out)
-        throw_input_error(path, fmt::format("the mesh reader (assimp) did not finish within {:g} s on this file", limit),
-                          "the file is damaged or malformed; " + format_fix);
-    if (WIFSIGNALED(status) || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.empty()) {
-        const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status)) + " (" +
-                                                          strsignal(WTERMSIG(status)) + ")"
-                                                    : "exit code " + std::to_string(WEXITSTATUS(status));
-        throw_input_error(path, "the mesh reader (assimp) crashed on this file (" + how + ")",
+    try {
+        return deserialize(run_isolated([&] { return serialize(import_in_process(path)); }, limit));
+    } catch (const IsolatedFailure& f) {
+        if (f.timed_out)
+            throw_input_error(path, fmt::format("the mesh reader (assimp) did not finish within {:g} s on this file", limit),
+                              "the file is damaged or malformed; " + format_fix);
+        throw_input_error(path, std::string("the mesh reader (assimp) crashed on this file (") + f.what() + ")",
                           "the file is damaged or malformed; " + format_fix);
     }
-    if (bytes[0] == 'E') throw Error(ExitCode::BadInput, bytes.substr(1));
-    if (bytes[0] == 'A') throw std::bad_alloc();
-    TriangleMesh m;
-    uint64_t nv = 0, nt = 0;
-    size_t at = 1;
-    std::memcpy(&nv, bytes.data() + at, 8);
-    at += 8;
-    m.vertices.resize(nv);
-    for (Vec3& v : m.vertices) std::memcpy(v.data(), bytes.data() + at, 24), at += 24;
-    std::memcpy(&nt, bytes.data() + at, 8);
-    at += 8;
-    m.triangles.resize(nt);
-    std::memcpy(m.triangles.data(), bytes.data() + at, nt * sizeof(Tri));
-    return m;
 }
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::string& path, double scale) {
-    check_scale(path, scale);
+LoadedMesh load_mesh_file(const std::string& path) {
     check_path(path);
     // assimp crashes on some malformed PLY headers (prescore/ply_header.h): check them first.
     if (const std::string head = read_file_head(path); looks_like_ply(head)) check_ply_header(head, path);
@@ -351,7 +314,12 @@ TriangleMesh load_mesh(const std::string& path, double scale) {
     const std::string format_fix =
         "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
         "3DS, FBX, ...)";
-    TriangleMesh mesh = import_isolated(path, format_fix);
+    return import_isolated(path, format_fix);
+}
+
+TriangleMesh load_mesh(const std::string& path, double scale) {
+    check_scale(path, scale);
+    TriangleMesh mesh = load_mesh_file(path).mesh;
     for (Vec3& v : mesh.vertices) v *= scale;
     return mesh;
 }

@@ -26,6 +26,16 @@
 
 namespace shatter {
 
+struct LoadedMesh {
+    TriangleMesh mesh;           // in the file's units
+    double metres_per_unit = 0;  // what the file says a unit is (unit: m); 0 when its format has no units
+};
+
+// Loads `path` in the file's own units, with what the file says a unit is: glTF/GLB (metres by
+// the specification) and Collada (assimp applies its <unit meter>) give 1, FBX its
+// UnitScaleFactor (centimetres per unit) / 100, every other format 0. Throws as load_mesh does.
+LoadedMesh load_mesh_file(const std::string& path);
+
 // Loads `path` and returns its triangles in metres (coordinates times `scale`, which must be
 // finite and > 0; unit: m per mesh unit). Throws shatter::Error(BadInput) on a missing,
 // unreadable or corrupt file, a file without triangles, or NaN/Inf coordinates.

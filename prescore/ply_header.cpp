@@ -47,7 +47,9 @@ std::string line_problem(const std::vector<std::string>& w, bool* elements_seen)
         if (w.size() == 5 && w[1] == "list" && scalar_type(w[2]) && scalar_type(w[3])) return "";
         return "a property line must be 'property TYPE NAME' or 'property list TYPE TYPE NAME'";
     }
-    return "unknown header keyword '" + key + "'";
+    // Any other line of printable text ("Created by ...", an exporter's own note) is skipped, as
+    // assimp's reader skips it: only the lines that define the layout can mislead the reader.
+    return "";
 }
 
 }  // namespace

@@ -6,8 +6,9 @@
 // tests/bad_inputs/). So a file that starts like a PLY ("ply" on the first line) must have a header
 // that follows the format (http://paulbourke.net/dataformats/ply/): printable text lines, "format"
 // ascii | binary_little_endian | binary_big_endian 1.0, "element NAME COUNT", "property TYPE NAME"
-// or "property list TYPE TYPE NAME" with PLY's scalar types, "comment" and "obj_info" lines, and
-// "end_header" within the first 64 kB. Anything else is refused with the line and what is wrong.
+// or "property list TYPE TYPE NAME" with PLY's scalar types, and "end_header" within the first
+// 64 kB. Other lines of printable text ("comment", "obj_info", an exporter's "Created by ...")
+// are skipped, as assimp skips them. Anything else is refused with the line and what is wrong.
 #pragma once
 
 #include <string>

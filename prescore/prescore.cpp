@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
+#include "prescore/adapt.h"
 #include "prescore/collision_parts.h"
 #include "prescore/constraint_reduction.h"
 #include "prescore/constraints.h"
@@ -47,12 +48,12 @@ private:
 // CGAL's refinement: found by tests/bad_inputs), and nothing this tool simulates is that small
 // or beyond a million kilometres, so the size (after --scale) must lie within these bounds.
 constexpr double kMinDiagonal = 1e-9, kMaxDiagonal = 1e9;  // (unit: m)
-void refuse_out_of_scale(const MeshCheck& c, const std::string& path) {
-    if (c.diagonal >= kMinDiagonal && c.diagonal <= kMaxDiagonal) return;
+void refuse_out_of_scale(double diagonal, const std::string& path) {
+    if (diagonal >= kMinDiagonal && diagonal <= kMaxDiagonal) return;
     throw_input_error(path,
-                      fmt::format("the mesh's bounding-box diagonal is {:.4g} m, outside {:g} to {:g} m", c.diagonal,
+                      fmt::format("the mesh's bounding-box diagonal is {:.4g} m, outside {:g} to {:g} m", diagonal,
                                   kMinDiagonal, kMaxDiagonal),
-                      "set the mesh scale (--scale or [mesh] scale) to the size of one mesh unit in metres");
+                      "set the mesh's size (--size or [mesh] size, the longest side in metres) or its scale");
 }
 
 // A mesh with no volume (all points in a plane, or a closed surface that encloses nothing) has
@@ -70,16 +71,26 @@ void refuse_flat(const MeshCheck& c, const std::string& path) {
                           "give a solid mesh; prescore fractures volumes, not sheets");
 }
 
+// Self-intersecting pairs a mesh may have and still go to Mesh_3 as it is: 1% of its triangles.
+size_t kMaxSelfIntersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
+
 // The mesh Mesh_3 will see: the input when it can be tetrahedralized as it is, else its alpha
 // wrap when the repair mode allows.
 TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, PrescoreReport& report) {
     report.input = check_mesh(mesh);
     spdlog::info("mesh: {}", describe(report.input));
-    refuse_out_of_scale(report.input, settings.path);
+    refuse_out_of_scale(report.input.diagonal, settings.path);
     refuse_flat(report.input, settings.path);
     if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
     std::string why;
-    const bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
+    bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
+    if (usable && report.input.self_intersections > kMaxSelfIntersections(report.input)) {
+        // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many
+        // make Mesh_3 refine around the crossings without end.
+        usable = false;
+        why = fmt::format("{} self-intersecting triangle pairs (more than {})", report.input.self_intersections,
+                          kMaxSelfIntersections(report.input));
+    }
     if (settings.repair == RepairMode::Never && !usable)
         throw_input_error(settings.path, "the mesh cannot be tetrahedralized as it is: " + why,
                           "allow repair with --repair auto (alpha wrapping), or fix the mesh");
@@ -100,26 +111,8 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     return mesh;
 }
 
-// Mesh_3 drops parts thinner than a tet, which can cut a connected surface into separate
-// clusters of tets. Refused with the real cause rather than a puzzling partition error.
-void refuse_split_by_meshing(const TetTopology& topo, const PrescoreReport& report, const std::string& path) {
-    int32_t components = 0;
-    tet_components(topo, {}, &components);
-    const size_t surface_components = report.tetrahedralized_from.components;
-    if (static_cast<size_t>(components) <= surface_components) return;
-    std::string fix = "raise --resolution so that tets fit in the thin parts";
-    if (report.repaired)
-        fix += ", or raise --wrap-alpha so that the wrap closes the mesh's holes instead of wrapping both sides of "
-               "its walls";
-    throw_input_error(path,
-                      fmt::format("the tets fall apart into {} clusters although the {} has {} component(s): parts "
-                                  "of it are thinner than a tet ({} tets in all)",
-                                  components, report.repaired ? "alpha-wrapped mesh" : "mesh", surface_components,
-                                  topo.neighbour.size()),
-                      fix);
-}
-
-std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& settings, uint64_t mesh_hash) {
+std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& settings, uint64_t mesh_hash,
+                          const AutoChoices& choices) {
     // The mesh is named by its file name and content hash, not its path: the same inputs give
     // the same bytes wherever they live (caching, pinned hashes).
     nlohmann::ordered_json j;
@@ -127,6 +120,7 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     j["mesh"]["path"] = std::filesystem::path(mesh.path).filename().string();
     j["mesh"]["fnv1a64"] = fmt::format("{:016x}", mesh_hash);
     j["prescore"] = to_json(settings);
+    if (!choices.list.empty()) j["auto"] = choices.to_json();  // what prescore chose, and why
     return j.dump();
 }
 
@@ -158,24 +152,38 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     PrescoreReport local;
     PrescoreReport& report = report_out ? *report_out : local;
     PhaseTimer timer(report);
+    AutoChoices& choices = report.choices;
 
     const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
-    TriangleMesh surface = load_mesh(mesh_settings.path, mesh_settings.scale);
+    LoadedMesh loaded = load_mesh_file(mesh_settings.path);
+    if (!mesh_settings.size) {
+        // Numbers this far from a metre lose precision whatever the size asked for: check them
+        // in the units given (or the file's) before any automatic size.
+        const double given = mesh_settings.scale ? *mesh_settings.scale
+                                                 : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
+        refuse_out_of_scale(check_mesh(loaded.mesh, false).diagonal * given, mesh_settings.path);
+    }
+    report.scale = choose_scale(loaded.mesh, loaded.metres_per_unit, mesh_settings, choices);
+    for (Vec3& v : loaded.mesh.vertices) v *= report.scale;
     timer.lap("load");
-    surface = prepare_surface(std::move(surface), mesh_settings, report);
+    const TriangleMesh& input = loaded.mesh;
+    TriangleMesh surface = prepare_surface(input, mesh_settings, report);
     timer.lap(report.repaired ? "check+repair" : "check");
 
     Model model;
     model.producer = producer_string();
-    model.settings_json = settings_json(mesh_settings, settings, mesh_hash);
     model.density = settings.density;
-    model.mesh = tetrahedralize(surface, tetrahedralize_settings_for(report.input.diagonal, settings.resolution));
+    FittedTets fit = fit_tets(input, std::move(surface), report.tetrahedralized_from, report.repaired,
+                              report.input.diagonal, mesh_settings, settings, mesh_settings.path, choices);
+    model.mesh = std::move(fit.tets);
+    report.resolution = fit.resolution;
+    report.repaired = fit.wrapped;
+    report.tetrahedralized_from = fit.surface_check;
     report.tets_meshed = model.mesh.tets.size();
     spdlog::info("tetrahedralize: {} tets, {} vertices", model.mesh.tets.size(), model.mesh.vertices.size());
     timer.lap("tetrahedralize");
 
     TetTopology topo = build_topology(model.mesh);
-    refuse_split_by_meshing(topo, report, mesh_settings.path);
     std::vector<std::array<bool, 4>> cavity;
     if (settings.hollow) {
         report.hollow_thickness = settings.hollow->resolve(report.input.diagonal);
@@ -190,9 +198,10 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         timer.lap("hollow");
     }
 
-    Partition part = partition(model.mesh, topo, settings.pieces, settings.seed);
+    Partition part = partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt, choices);
     model.tet_piece = std::move(part.tet_piece);
-    model.pieces.resize(settings.pieces);
+    model.pieces.resize(part.piece_tets.size());
+    model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices);
     timer.lap("partition");
     model.constraints = reduce_constraints(place_constraints(model.mesh, topo, model.tet_piece),
                                            settings.constraints_per_pair);

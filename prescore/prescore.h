@@ -1,8 +1,11 @@
 // prescore: a mesh in, pieces and constraints out. The public entry point of the stage.
 //
-//   load (assimp) -> check -> [repair: alpha wrap] -> tetrahedralize (Mesh_3) -> [hollow]
-//     -> partition (round-robin flood fill) -> constraints -> per piece: surface, mass
-//     properties, collision parts
+//   load (assimp) -> size -> check -> [repair: alpha wrap] -> tetrahedralize (Mesh_3; the
+//     resolution raised or thin walls thickened when parts are lost) -> [hollow] -> partition
+//     (round-robin flood fill; slivers join their neighbours) -> constraints -> per piece:
+//     surface, mass properties, collision parts
+//
+// prescore/adapt.h says how it adapts to real meshes, and how each choice is recorded.
 //
 // Each phase is its own file in prescore/; this file only chains them and times them.
 #pragma once
@@ -14,6 +17,7 @@
 #include "core/model.h"
 #include "core/settings.h"
 #include "core/shot.h"
+#include "prescore/adapt.h"
 #include "prescore/mesh_check.h"
 
 namespace shatter {
@@ -26,6 +30,9 @@ struct PrescoreReport {
     size_t tets_removed = 0;         // by hollowing
     size_t tets_restored = 0;        // put back by hollowing to keep the shell connected
     double hollow_thickness = 0;     // (unit: m) 0 when solid
+    double scale = 1;                // metres per file unit, as chosen (prescore/adapt.h)
+    double resolution = 0;           // cells per diagonal, as used
+    AutoChoices choices;             // what prescore chose for this mesh, and why
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
 

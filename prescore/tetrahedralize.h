@@ -12,9 +12,16 @@
 // boundary facet's circumcentre and the input surface.
 #pragma once
 
+#include <cstddef>
+
+#include "core/error.h"
 #include "core/geometry.h"
 
 namespace shatter {
+
+struct TetBudgetReached : Error {
+    using Error::Error;
+};
 
 struct TetrahedralizeSettings {
     double cell_size = 0;               // max tet circumradius (unit: m, > 0)
@@ -24,6 +31,8 @@ struct TetrahedralizeSettings {
     double cell_radius_edge_ratio = 3;  // max tet circumradius / shortest edge (unitless, >= 2)
     double feature_angle = 60;          // creases whose face normals differ by more are kept exact (unit: degrees)
     double feature_min_length = 0;      // shorter creases are not protected (unit: m; the cell size applies too)
+    bool protect_features = true;       // protect the sharp creases (false: follow the surface only)
+    size_t max_vertices = 0;            // Mesh_3 stops at this many vertices and the call throws (0: no bound)
 };
 
 // The default resolution: the bunny (docs/physics.md) gets a few thousand tets. Measured on the
@@ -42,7 +51,9 @@ TetrahedralizeSettings tetrahedralize_settings_for(double diagonal, double resol
 // Output: only the cells inside the domain; vertices numbered in order of first use by the
 // tets; every tet with tet_volume > 0. Throws shatter::Error(BadInput) for invalid settings, a
 // mesh that is not a closed manifold surface, or a result without tets (the mesh is too thin
-// for the cell size).
+// for the cell size), and Error(Budget) when Mesh_3 reaches settings.max_vertices (a
+// self-intersecting or very detailed surface can make its refinement run without end): then it
+// throws TetBudgetReached, an Error(BadInput) that callers may catch to try another surface.
 TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSettings& settings);
 
 }  // namespace shatter

@@ -118,7 +118,9 @@ TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSett
     // (prescore/sharp_features.h).
     const double min_length = std::max(settings.cell_size, settings.feature_min_length);
     std::vector<std::vector<Point>> features;
-    for (const Polyline& line : sharp_polylines(closed_mesh, settings.feature_angle, min_length)) {
+    const std::vector<Polyline> creases =
+        settings.protect_features ? sharp_polylines(closed_mesh, settings.feature_angle, min_length) : std::vector<Polyline>{};
+    for (const Polyline& line : creases) {
         features.emplace_back();
         for (const Vec3& p : line) features.back().emplace_back(p.x(), p.y(), p.z());
     }
@@ -130,8 +132,21 @@ TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSett
                             params::facet_distance = settings.facet_distance,
                             params::cell_radius_edge_ratio = settings.cell_radius_edge_ratio,
                             params::cell_size = settings.cell_size);
+    CGAL::parameters::internal::Mesh_3_options options;
+    CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
+    options.maximal_number_of_vertices = settings.max_vertices;
+    options.pointer_to_error_code = &error;
     const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
-                                              params::no_lloyd(), params::no_odt());
+                                              params::no_lloyd(), params::no_odt(),
+                                              options);
+    if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
+        std::ostringstream s;
+        s << "Mesh_3 reached its budget of " << settings.max_vertices << " vertices at cell size "
+          << settings.cell_size << " m before the surface was followed";
+        throw TetBudgetReached(ExitCode::BadInput, "tetrahedralize: " + s.str() +
+                                                       " (fix: lower the resolution, or repair the mesh with "
+                                                       "--repair always)");
+    }
     TetMesh out = to_tet_mesh(c3t3);
     if (out.tets.empty()) {
         std::ostringstream s;

@@ -1,0 +1,39 @@
+// The default shot of `shatter run MESH` (core/shot.h). Keep in step with assets/bunny.toml:
+// tests/core/shot_test.cpp compares every setting but the mesh's path and size and the camera.
+#include "core/shot.h"
+
+namespace shatter {
+
+const char* const kDefaultShot = R"toml(
+[prescore]
+pieces = 10
+seed = 1
+hollow = 0.06
+resolution = 20
+density = 1100
+constraints_per_pair = 16
+collision_max_parts = 8
+
+[object]
+position = [0, 1.5, 0]
+
+[material]
+stiffness = 3e9
+strength = 2e4
+alpha = 1.0
+friction = 0.6
+restitution = 0.1
+
+[simulate]
+duration = 4.0
+fps = 30
+substeps = 16
+iterations = 20
+
+[render]
+width = 1280
+height = 720
+fov = 40
+)toml";
+
+}  // namespace shatter

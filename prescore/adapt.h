@@ -1,0 +1,85 @@
+// How prescore adapts to a mesh instead of refusing it. Real meshes have no units, thin parts
+// (ears, legs, walls, tails), borders, several components and self-intersections; each of these
+// used to end in an error whose fix the user had to apply by hand. Here prescore applies it:
+//
+//   size        a file without units is made kDefaultSize long ([mesh] size or scale to choose);
+//   resolution  when Mesh_3 loses parts of the surface (the tets fall apart into more clusters
+//               than the surface has components, or fill less than kMinFilled of its volume),
+//               the resolution is raised by kResolutionStep while the tets stay within kTetBudget;
+//   thicken     when the budget cannot reach the thin parts, the input is alpha-wrapped with an
+//               offset of kThickenOffset cells, which gives every wall a thickness of about 1.5
+//               tets (an open sheet becomes a slab, a double-sided wrap of a thin wall one solid);
+//   repair      a surface whose meshing does not end within the vertex budget (heavy
+//               self-intersections) is alpha-wrapped first;
+//   slivers     tet clusters smaller than kSliverFraction of the volume are not pieces of their
+//               own: each joins the piece nearest to it (a piece may then be two clusters that
+//               move as one rigid body);
+//   pieces      when more large clusters remain than pieces were asked for, each gets one.
+//
+// Every choice is logged in one line and recorded in the model's settings (an "auto" list of
+// what was done and why, with numbers). [mesh] adapt = false (--no-adapt) turns the
+// resolution, thickening, sliver and piece choices off: such meshes are refused as before.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/geometry.h"
+#include "core/settings.h"
+#include "prescore/mesh_check.h"
+#include "prescore/partition.h"
+#include "prescore/tet_topology.h"
+
+namespace shatter {
+
+inline constexpr double kResolutionStep = 1.6;  // resolution factor per attempt
+inline constexpr size_t kTetBudget = 150000;    // most tets the resolution may be raised to
+inline constexpr size_t kMaxMeshVertices = 40000;  // Mesh_3 stops here (about 220,000 tets)
+inline constexpr double kMinFilled = 0.85;      // tets' volume / the surface's, below which parts are lost
+inline constexpr double kThickenOffset = 0.75;  // wrap offset when thickening (unit: tet sizes)
+inline constexpr double kSliverFraction = 0.01;  // clusters below this share of the volume join a neighbour
+inline constexpr double kMeshSeconds = 6;       // one Mesh_3 call past this is stopped (unit: s)
+
+struct AutoChoice {
+    std::string what;  // e.g. "resolution 20 -> 32"
+    std::string why;   // e.g. "the tets fell apart into 7 clusters (the surface has 1 component)"
+};
+
+// The choices made for one mesh, in order. note() logs "auto: WHAT (WHY)" and records it.
+struct AutoChoices {
+    std::vector<AutoChoice> list;
+    void note(std::string what, std::string why);
+    nlohmann::ordered_json to_json() const;
+};
+
+// Metres per file unit: settings.size (the longest side), else settings.scale, else the file's
+// own units, else what makes the longest side kDefaultSize (a choice, noted).
+double choose_scale(const TriangleMesh& mesh, double file_metres_per_unit, const MeshSettings& settings,
+                    AutoChoices& choices);
+
+struct FittedTets {
+    TetMesh tets;
+    TriangleMesh surface;        // what Mesh_3 filled (the input, its wrap or its thickened wrap)
+    MeshCheck surface_check;     // of that surface (no self-intersection search)
+    double resolution = 0;       // the resolution used (cells per diagonal)
+    bool wrapped = false;        // the surface is an alpha wrap of the input
+};
+
+// Fills `surface` (already checked: `surface_check`; `wrapped` when it is the input's wrap) with
+// tets at settings.resolution, adapting as the header says when parts are lost. `input` is the
+// mesh as loaded (for wrapping), `diagonal` its bounding-box diagonal (unit: m). Throws
+// Error(BadInput) when the mesh cannot be meshed, naming its size and the setting to change.
+FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshCheck& surface_check, bool wrapped,
+                    double diagonal, const MeshSettings& mesh, const PrescoreSettings& settings,
+                    const std::string& path, AutoChoices& choices);
+
+// partition() over the clusters of at least kSliverFraction of the volume; the tets of smaller
+// clusters take the piece of the nearest tet (centroid to centroid) of a large one. With adapt,
+// `pieces` is raised to the number of large clusters when it is smaller. When every cluster is
+// large and there are at most `pieces` of them, this is exactly partition().
+Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
+                            bool adapt, AutoChoices& choices);
+
+}  // namespace shatter
