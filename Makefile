@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps build demo test bench asan fuzz study clean
+.PHONY: all deps build demo test bench asan fuzz study corpus clean
 
 all: build
 
@@ -38,6 +38,11 @@ study: build
 	@$(BUILD)/bench/study --out bench/results/study --refs $(BUILD)/study-refs
 	@$(BUILD)/bench/study_float --out bench/results/study --refs $(BUILD)/study-refs
 	@/usr/bin/python3 scripts/study_charts.py bench/results/study docs/images
+
+# Every mesh of the corpus (CGAL's data set, glmark2-data, assimp-testmodels) pre-scored with the
+# defaults; the table goes to docs/corpus.md. A fixed sample of it runs in `make test`.
+corpus: build
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/corpus.md
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log out build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

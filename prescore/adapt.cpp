@@ -90,10 +90,14 @@ TetMesh deserialize(const std::string& bytes) {
 
 // Mesh_3 at one resolution, in a child process (prescore/isolated.h): an empty mesh when it made
 // no tets, nullopt when it hit its vertex budget, ran past kMeshSeconds, or crashed twice (the
-// second time without protected sharp creases, where its crashes were seen).
-std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, double diagonal, double resolution) {
+// second time without protected sharp creases, where its crashes were seen: elk.off).
+std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrapped, double diagonal,
+                                          double resolution) {
     TetrahedralizeSettings ts = tetrahedralize_settings_for(diagonal, resolution);
     ts.max_vertices = kMaxMeshVertices;
+    // An alpha wrap's creases are the wrap's own facets meeting, not the object's edges; protecting
+    // them is where Mesh_3 crashed or stalled (lion.off, blobby_3cc.off of CGAL's data set).
+    ts.protect_features = !wrapped;
     for (int attempt = 0; attempt < 2; ++attempt, ts.protect_features = false) {
         std::string bytes;
         try {
@@ -143,11 +147,11 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
     };
 
     // 1. The asked resolution; a surface whose meshing does not end is wrapped first.
-    std::optional<TetMesh> tets = try_tetrahedralize(fit.surface, diagonal, fit.resolution);
+    std::optional<TetMesh> tets = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, fit.resolution);
     if (!tets && !fit.wrapped && mesh.repair != RepairMode::Never) {
         choices.note("repair: alpha wrap", budget_why(fit.resolution));
         wrap(mesh.wrap_offset * diagonal);
-        tets = try_tetrahedralize(fit.surface, diagonal, fit.resolution);
+        tets = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, fit.resolution);
     }
     if (!tets && !mesh.adapt) refuse_budget(fit.resolution);
     Loss loss;
@@ -177,7 +181,7 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
         const double next = fit.resolution * kResolutionStep;
         const double estimate = double(std::max<size_t>(tets->tets.size(), 1)) * std::pow(kResolutionStep, 3);
         if (next > kResolutionLimits.max || estimate > double(kTetBudget)) break;
-        std::optional<TetMesh> finer = try_tetrahedralize(fit.surface, diagonal, next);
+        std::optional<TetMesh> finer = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, next);
         if (!finer) break;
         choices.note(fmt::format("resolution {:g} -> {:g}", fit.resolution, next), loss.str(fit.surface_check.components));
         fit.resolution = next;
@@ -200,7 +204,7 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
                                  kThickenOffset, r),
                      attempt == 0 ? lost_why : budget_why(r * kResolutionStep));
         wrap(offset);
-        tets = try_tetrahedralize(fit.surface, diagonal, r);
+        tets = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, r);
         if (tets) break;
     }
     if (!tets) refuse_budget(r);

@@ -40,7 +40,7 @@ inline constexpr size_t kMaxMeshVertices = 40000;  // Mesh_3 stops here (about 2
 inline constexpr double kMinFilled = 0.85;      // tets' volume / the surface's, below which parts are lost
 inline constexpr double kThickenOffset = 0.75;  // wrap offset when thickening (unit: tet sizes)
 inline constexpr double kSliverFraction = 0.01;  // clusters below this share of the volume join a neighbour
-inline constexpr double kMeshSeconds = 6;       // one Mesh_3 call past this is stopped (unit: s)
+inline constexpr double kMeshSeconds = 15;      // one Mesh_3 call past this is stopped (unit: s)
 
 struct AutoChoice {
     std::string what;  // e.g. "resolution 20 -> 32"

@@ -18,8 +18,9 @@ PACKAGES=(
   libspdlog-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   # tests
   libgtest-dev
-  # the demo mesh (/usr/share/glmark2/models/bunny.obj)
-  glmark2-data
+  # the demo mesh (/usr/share/glmark2/models/bunny.obj) and the mesh corpus (scripts/corpus.py):
+  # CGAL's data set (data.tar.gz in libcgal-demo) and assimp's test models of every format
+  glmark2-data libcgal-demo assimp-testmodels
   # pipeline: MP4 encoding, energy plots and charts (Debian's /usr/bin/python3), Slurm fan-out
   # (tested against a single-node cluster on loopback)
   ffmpeg python3-matplotlib python3-numpy slurm-wlm munge

@@ -29,7 +29,9 @@ density = 1000
 )");
     Shot s = load_shot(path);
     EXPECT_EQ(s.mesh.path, dir.file("models/bunny.obj"));
-    EXPECT_DOUBLE_EQ(s.mesh.scale, 0.1);
+    ASSERT_TRUE(s.mesh.scale.has_value());
+    EXPECT_DOUBLE_EQ(*s.mesh.scale, 0.1);
+    EXPECT_FALSE(s.mesh.size.has_value());
     EXPECT_EQ(s.mesh.repair, RepairMode::Never);
     EXPECT_EQ(s.prescore.pieces, 7u);
     EXPECT_EQ(s.prescore.seed, 42u);
@@ -38,6 +40,43 @@ density = 1000
     EXPECT_DOUBLE_EQ(s.prescore.hollow->value, 0.012);
     EXPECT_DOUBLE_EQ(s.prescore.resolution, 25);
     EXPECT_DOUBLE_EQ(s.prescore.density, 1000);
+}
+
+TEST(ShotFile, ASizeOrNoScaleLeavesTheScaleToTheFileOrTheDefaultSize) {
+    TempDir dir;
+    Shot s = load_shot(dir.write("a.toml", "[mesh]\npath = \"m.obj\"\nsize = 0.25\nadapt = false\n"));
+    ASSERT_TRUE(s.mesh.size.has_value());
+    EXPECT_DOUBLE_EQ(*s.mesh.size, 0.25);
+    EXPECT_FALSE(s.mesh.scale.has_value());
+    EXPECT_FALSE(s.mesh.adapt);
+    EXPECT_EQ(to_json(s.mesh)["scale"], "auto");
+    EXPECT_NE(load_error(dir.write("b.toml", "[mesh]\npath = \"m.obj\"\nsize = 0\n")).find("mesh.size"),
+              std::string::npos);
+}
+
+// `shatter run MESH` runs the default shot, which is assets/bunny.toml without its mesh path,
+// scale and camera: every other setting must agree.
+TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
+    const Shot demo = load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/bunny.toml");
+    const Shot mine = default_shot_for_mesh("horse.3ds", {"material.alpha=2"});
+    EXPECT_EQ(mine.mesh.path, "horse.3ds");
+    EXPECT_FALSE(mine.mesh.scale.has_value());
+    EXPECT_FALSE(mine.mesh.size.has_value());
+    EXPECT_DOUBLE_EQ(mine.material.alpha, 2);
+    EXPECT_EQ(to_json(mine.prescore), to_json(demo.prescore));
+    EXPECT_EQ(to_json(mine.scene), to_json(demo.scene));
+    EXPECT_EQ(to_json(mine.object), to_json(demo.object));
+    Shot alpha1 = default_shot_for_mesh("horse.3ds");
+    EXPECT_EQ(to_json(alpha1.material), to_json(demo.material));
+    EXPECT_EQ(to_json(alpha1.simulate), to_json(demo.simulate));
+    RenderSettings render = demo.render;
+    render.camera_position.reset();
+    render.camera_target.reset();
+    EXPECT_EQ(to_json(alpha1.render), to_json(render));
+    EXPECT_EQ(mine.mesh.repair, demo.mesh.repair);
+    EXPECT_EQ(mine.mesh.wrap_alpha, demo.mesh.wrap_alpha);
+    EXPECT_EQ(mine.mesh.wrap_offset, demo.mesh.wrap_offset);
+    EXPECT_EQ(load_shot_or_mesh("horse.3ds").mesh.path, "horse.3ds");
 }
 
 TEST(ShotFile, UnknownKeyNamesFileLineAndSuggestsTheKnownKey) {
