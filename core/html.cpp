@@ -92,7 +92,9 @@ video { width: 100%; }
 .controls input[type=range] { flex: 1; }
 button { font: inherit; padding: 2px 12px; }
 img.thumb { width: 160px; }
-.compare { position: relative; display: inline-block; max-width: 100%; }
+.grid img { width: 100%; }
+.compare { position: relative; width: 100%; }
+.compare img { width: 100%; image-rendering: pixelated; }
 .compare img.over { position: absolute; left: 0; top: 0; }
 footer { margin-top: 3em; color: var(--muted); font-size: 0.85em; }
 )CSS";
