@@ -197,10 +197,18 @@ const char* const kViewerScript = R"JS(
     scene.add(grid);
     camera.near = radius / 100;
     camera.far = radius * 100;
-    // Far enough that the sphere around everything the animation reaches fits the view's height.
-    var distance = 1.15 * radius / Math.sin(camera.fov * Math.PI / 360);
-    camera.position.copy(new THREE.Vector3(1.4, 0.9, 2.2).normalize().multiplyScalar(distance).add(center));
-    controls.target.copy(center);
+    camera.fov = parseFloat(box.dataset.fov) || 35;
+    camera.updateProjectionMatrix();
+    if (box.dataset.eye && box.dataset.target) {
+      // the shot's camera, as the movie shows it
+      camera.position.fromArray(JSON.parse(box.dataset.eye));
+      controls.target.fromArray(JSON.parse(box.dataset.target));
+    } else {
+      // far enough that the sphere around everything the animation reaches fits the view's height
+      var distance = 1.15 * radius / Math.sin(camera.fov * Math.PI / 360);
+      camera.position.copy(new THREE.Vector3(1.4, 0.9, 2.2).normalize().multiplyScalar(distance).add(center));
+      controls.target.copy(center);
+    }
     controls.update();
     var names = new Set();
     gltf.scene.traverse(function (o) { if (/^piece_\d+$/.test(o.name)) names.add(o.name); });
@@ -260,8 +268,14 @@ std::string viewer_section(const ReportPageInput& in) {
                "meanwhile <a href=\"" + url_path(files.value("glb", in.name + ".glb")) + "\">" +
                html_escape(in.name) + ".glb</a> opens in Blender or any glTF viewer.</p>\n";
     }
-    out += "<div class=\"viewer\" id=\"viewer\"><p id=\"viewer-status\" class=\"muted\">Loading " + html_escape(in.name) +
-           ".glb&hellip;</p></div>\n";
+    // The shot's camera, when it sets one, so that the view starts as the movie looks.
+    const json render = in.settings.value("render", json::object());
+    std::string camera = " data-fov=\"" + html_escape(render.value("fov", json(35.0)).dump()) + "\"";
+    if (render.contains("camera_position") && render.contains("camera_target"))
+        camera += " data-eye=\"" + html_escape(render["camera_position"].dump()) + "\" data-target=\"" +
+                  html_escape(render["camera_target"].dump()) + "\"";
+    out += "<div class=\"viewer\" id=\"viewer\"" + camera + "><p id=\"viewer-status\" class=\"muted\">Loading " +
+           html_escape(in.name) + ".glb&hellip;</p></div>\n";
     out += "<div class=\"controls\"><button id=\"play\" disabled>Play</button><input type=\"range\" id=\"scrub\" min=\"0\" "
            "max=\"1\" step=\"any\" value=\"0\" disabled><span id=\"time\">0.00 s</span></div>\n";
     out += "<p class=\"muted\">Drag to orbit, right-drag to pan, wheel to zoom; the slider scrubs the animation. "
