@@ -9,6 +9,7 @@
 #include "cmd/command.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "render/diff_page.h"
 #include "render/diff_report.h"
 
 namespace shatter {
@@ -51,6 +52,7 @@ int run(const DiffFlags& f) {
             const std::string json = (std::filesystem::path(report) / "summary.json").string();
             write_file_atomic(json, diff_summary_json(s));
             fmt::print("wrote: {}\n", json);
+            fmt::print("wrote: {}\n", write_diff_page(s, report));
         }
         if (!f.junit.empty()) {
             write_file_atomic(f.junit, diff_junit_xml(s));
@@ -96,9 +98,10 @@ RunCommand add_diff_command(CLI::App& root) {
                               fmt::format("{:g}", t.max_fraction)))
         ->check(CLI::Range(0.0, 1.0));
     auto* report = c->add_option("--report", f->report,
-                                 option_help("directory for summary.json and the heat maps (NAME.heat.png)", "",
+                                 option_help("directory for summary.json, report.html and, per failing image, its heat map "
+                                             "(NAME.heat.png) and copies of the two images", "",
                                              "ACTUAL.diff"));
-    c->add_flag("--no-report", f->no_report, "write no summary and no heat maps")->excludes(report);
+    c->add_flag("--no-report", f->no_report, "write no summary, no page and no heat maps")->excludes(report);
     c->add_option("--junit", f->junit, "also write a JUnit XML report to this file (one test case per image)");
     return [f] { return run(*f); };
 }

@@ -51,8 +51,8 @@ int run(RunFlags& f) {
 RunCommand add_run_command(CLI::App& root) {
     auto f = std::make_shared<RunFlags>();
     CLI::App* c = root.add_subcommand(
-        "run", "Run a shot from mesh to movie: prescore, simulate, render, encode (MP4), contact sheet, energy plot and "
-               ".glb, into one output folder. Stages that are up to date are skipped; a killed run resumes.");
+        "run", "Run a shot from mesh to movie: prescore, simulate, render, encode (MP4), contact sheet, energy plot, "
+               ".glb and report.html, into one output folder. Stages that are up to date are skipped; a killed run resumes.");
     c->add_option("shot", f->options.shot,
                   "the shot file (.toml; docs/shot.md), or a mesh file in any format assimp reads (OBJ, PLY, STL, OFF, "
                   "glTF/GLB, 3DS, FBX, ...) to run the default shot on it (a 1.5 m drop, docs/shot.md)")
@@ -63,8 +63,8 @@ RunCommand add_run_command(CLI::App& root) {
                   "--set material.alpha=0.5 --set render.width=640")
         ->allow_extra_args(false);
     c->add_option("--stages", f->stages,
-                  option_help("only these stages, comma-separated: prescore, simulate, render, encode, sheet, plot, "
-                              "export; the stages before them must be up to date", "", "all"));
+                  option_help("only these stages, comma-separated: prescore, simulate, render, encode, sheet, plot, export, "
+                              "report; the stages before them must be up to date", "", "all"));
     c->add_option("--chunk", f->chunk,
                   option_help("render only chunk I of N equal frame ranges, I/N counted from 0 (for cluster job "
                               "arrays); later stages wait until every frame is there", "", "0/1"));

@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "pipeline/batch_page.h"
 #include "pipeline/plot.h"
 #include "pipeline/process.h"
 #include "pipeline/sheets.h"
@@ -112,19 +113,13 @@ void sweep_outputs(const BatchJob& job, const std::vector<const BatchRunResult*>
     attempt("energy plot", plot, [&] { plot_energy(curves, job.name, plot); });
 
     // The strip: every run at the same moment, by default 0.5 s after the latest first break.
-    double when = 0;
-    if (job.strip_time) {
-        when = *job.strip_time;
-    } else {
-        for (const BatchRunResult* r : ok)
-            when = std::max(when, number_or(r->summary["simulation"], "first_break_s", 0.0) + 0.5);
-    }
+    const double when = strip_moment(job, ok);
     std::vector<StripPanel> panels;
     for (const BatchRunResult* r : ok) {
         const json& s = r->summary["simulation"];
         const uint32_t frames = s["frames"].get<uint32_t>();
         const uint32_t f = std::min<uint32_t>(frames - 1, uint32_t(std::lround(when * s["fps"].get<double>())));
-        panels.push_back({(fs::path(r->output_dir) / "frames" / frame_file_name(f)).string(),
+        panels.push_back({(fs::path(r->output_dir) / frame_at(*r, when)).string(),
                           fmt::format("{}  t = {:.2f} s", r->caption, f / s["fps"].get<double>())});
     }
     const std::string strip = (dir / (job.name + ".strip.png")).string();
@@ -132,6 +127,20 @@ void sweep_outputs(const BatchJob& job, const std::vector<const BatchRunResult*>
 }
 
 }  // namespace
+
+double strip_moment(const BatchJob& job, const std::vector<const BatchRunResult*>& ok) {
+    if (job.strip_time) return *job.strip_time;
+    double when = 0;
+    for (const BatchRunResult* r : ok) when = std::max(when, number_or(r->summary["simulation"], "first_break_s", 0.0) + 0.5);
+    return when;
+}
+
+std::string frame_at(const BatchRunResult& run, double when) {
+    const json& s = run.summary["simulation"];
+    const uint32_t frames = s["frames"].get<uint32_t>();
+    const uint32_t f = std::min<uint32_t>(frames - 1, uint32_t(std::lround(when * s["fps"].get<double>())));
+    return (fs::path("frames") / frame_file_name(f)).string();
+}
 
 BatchResult run_batch(const BatchFile& batch, const BatchOptions& options) {
     const std::string exe = options.shatter.empty() ? own_executable() : options.shatter;
@@ -203,6 +212,13 @@ BatchResult run_batch(const BatchFile& batch, const BatchOptions& options) {
         std::vector<const BatchRunResult*> runs;
         for (size_t j = 0; j < job.runs.size(); ++j) runs.push_back(&result.runs[k++]);
         if (job.runs.size() > 1) sweep_outputs(job, runs, result);
+    }
+    const std::string index = (fs::path(batch.output_dir) / "index.html").string();
+    try {
+        write_file_atomic(index, batch_page_html(batch, result));
+        result.made.push_back(index);
+    } catch (const Error& e) {
+        result.problems.push_back(fmt::format("index.html: {}", e.what()));
     }
     for (const BatchRunResult& r : result.runs)
         if (r.exit_code != 0) result.exit_code = static_cast<int>(ExitCode::Differs);

@@ -35,7 +35,14 @@ struct BatchResult {
     int exit_code = 0;                 // 0 when every run succeeded, else 1 (ExitCode::Differs)
 };
 
+// Runs every run, then per sweep the strip, plot and table, then OUTPUT/index.html (pipeline/batch_page.h).
 BatchResult run_batch(const BatchFile& batch, const BatchOptions& options);
+
+// The moment a job's strip shows (and the batch page's thumbnails): the job's strip_time, else
+// 0.5 s after the latest first break of its successful runs (unit: s).
+double strip_moment(const BatchJob& job, const std::vector<const BatchRunResult*>& ok);
+// The frame of a successful run nearest `when` (the last one at most), relative to its folder.
+std::string frame_at(const BatchRunResult& run, double when);
 
 // The closing table: one row per run.
 std::string format_batch_table(const BatchResult& result);

@@ -22,6 +22,7 @@
 #include "pipeline/export_glb.h"
 #include "pipeline/instability_record.h"
 #include "pipeline/plot.h"
+#include "pipeline/report_page.h"
 #include "pipeline/run_metrics.h"
 #include "pipeline/sheets.h"
 #include "pipeline/stage_cache.h"
@@ -45,6 +46,7 @@ const char* to_string(Stage stage) {
         case Stage::Sheet: return "sheet";
         case Stage::Plot: return "plot";
         case Stage::Export: return "export";
+        case Stage::Report: return "report";
     }
     return "?";
 }
@@ -138,6 +140,9 @@ public:
         finishing_stage(Stage::Export, {name_ + ".glb"}, [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}}; },
                         [&] { export_glb(model(), trajectory(), file(".glb")); });
         write_summary();
+        finishing_stage(Stage::Report, report_stage_outputs(), [&] { return report_stage_inputs(dir_.string(), name_, shot_, result_.summary); },
+                        [&] { write_report(dir_.string(), name_, shot_, result_.summary); });
+        write_report_times(dir_.string(), result_.stages);
         return std::move(result_);
     }
 
@@ -439,6 +444,7 @@ private:
                                    ".contact.png", ".energy.png", ".glb"})
             if (fs::exists(file(suffix), ec)) files[std::string(suffix).substr(1)] = name_ + suffix;
         if (all_frames_present()) files["frames"] = "frames/frame_%05d.png";
+        if (asked(Stage::Report) || fs::exists(dir_ / "report.html", ec)) files["report"] = "report.html";
         s["files"] = files;
         write_file_atomic((dir_ / "summary.json").string(), s.dump(2) + "\n");
         result_.summary = std::move(s);

@@ -1,7 +1,7 @@
 // `shatter run SHOT`: one shot from mesh to movie, into one output folder.
 //
 //   prescore ─► simulate ─► render ─► encode (MP4) ─► sheet (contact sheet) ─► plot (energy PNG)
-//                                                  ─► export (.glb) ─► summary.json
+//                                                  ─► export (.glb) ─► summary.json ─► report (report.html)
 //
 // Every stage is stamped with a key over what it read (pipeline/stage_cache.h): a re-run skips
 // the stages that are up to date, a killed run resumes where it stopped (frames one by one), and
@@ -9,6 +9,7 @@
 //
 //   NAME.model  NAME.pieces.ply  NAME.traj  NAME.breaks.jsonl  NAME.energy.csv  NAME.instability.json
 //   frames/  NAME.mp4  NAME.contact.png  NAME.energy.png  NAME.glb  summary.json  run.log  .shatter/
+//   report.html  report.times.js  viewer/   (the page of the run: pipeline/report_page.h)
 //
 // NAME is the shot file's stem. NAME.instability.json says what simulate's instability guard did
 // (clamps, or where it stopped; pipeline/instability_record.h); summary.json repeats it as
@@ -25,9 +26,9 @@
 
 namespace shatter {
 
-enum class Stage : uint8_t { Prescore, Simulate, Render, Encode, Sheet, Plot, Export };
+enum class Stage : uint8_t { Prescore, Simulate, Render, Encode, Sheet, Plot, Export, Report };
 inline constexpr Stage kAllStages[] = {Stage::Prescore, Stage::Simulate, Stage::Render, Stage::Encode,
-                                       Stage::Sheet,    Stage::Plot,     Stage::Export};
+                                       Stage::Sheet,    Stage::Plot,     Stage::Export, Stage::Report};
 const char* to_string(Stage stage);
 std::optional<Stage> parse_stage(const std::string& text);
 

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # make demo: the default shot (assets/bunny.toml) on a real mesh, the Stanford bunny from
-# Debian's glmark2-data, from mesh to movie with `shatter run`. Says where the results are.
+# Debian's glmark2-data, from mesh to movie with `shatter run`. Says where the results are: the
+# page out/demo/report.html shows them all (its 3D view needs three.js, which `make demo` installs
+# with scripts/install-node-tools.sh).
 set -euo pipefail
 BUILD=${1:-build}
 cd "$(dirname "$0")/.."
@@ -16,4 +18,5 @@ if [ "$status" -ne 0 ]; then
   exit "$status"
 fi
 echo "demo done in $((ms / 1000)).$(printf '%03d' $((ms % 1000))) s (build excluded; up-to-date stages are skipped)."
+echo "The page with everything (movie, contact sheet, energy plot, numbers, 3D view): open $(pwd)/$OUT/report.html"
 echo "The movie: $(pwd)/$OUT/bunny.mp4"

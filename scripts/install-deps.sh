@@ -24,6 +24,8 @@ PACKAGES=(
   # pipeline: MP4 encoding, energy plots and charts (Debian's /usr/bin/python3), Slurm fan-out
   # (tested against a single-node cluster on loopback)
   ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
+  # the report pages' tests: headless Chromium opens them (tests/pipeline/report_page_test.cpp)
+  chromium
 )
 
 if [ "${1:-}" = "--fuzz" ]; then

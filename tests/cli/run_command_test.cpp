@@ -32,13 +32,14 @@ using testing_support::write_cube_shot;
 
 int run_command_status(const std::vector<std::string>& args) { return testing_support::run_command(args).exit_code; }
 
-// Every file of an output folder (recursively) and its bytes, except the log, which has times.
+// Every file of an output folder (recursively) and its bytes, except the two that have times: the
+// log and the report's stage times.
 std::map<std::string, std::string> folder_bytes(const std::string& dir) {
     std::map<std::string, std::string> out;
     for (const auto& e : fs::recursive_directory_iterator(dir)) {
         if (!e.is_regular_file()) continue;
         const std::string rel = fs::relative(e.path(), dir).string();
-        if (rel == "run.log") continue;
+        if (rel == "run.log" || rel == "report.times.js") continue;
         out[rel] = slurp(e.path().string());
     }
     return out;
@@ -62,7 +63,7 @@ TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
     auto r = run_shatter({"run", shot, "-o", out, "--no-progress"});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     for (const char* f : {"cube.model", "cube.pieces.ply", "cube.traj", "cube.breaks.jsonl", "cube.energy.csv",
-                          "cube.mp4", "cube.contact.png", "cube.energy.png", "cube.glb", "summary.json", "run.log",
+                          "cube.mp4", "cube.contact.png", "cube.energy.png", "cube.glb", "summary.json", "run.log", "report.html",
                           "frames/frame_00000.png", "frames/frame_00015.png"})
         EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
     EXPECT_FALSE(fs::exists(fs::path(out) / "frames/frame_00016.png"));  // 0.5 s at 30 fps: 16 frames
@@ -74,7 +75,7 @@ TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
     const auto before = folder_bytes(out);
     auto again = run_shatter({"run", shot, "-o", out, "--no-progress"});
     ASSERT_EQ(again.exit_code, 0) << again.err;
-    for (const char* stage : {"prescore", "simulate", "render", "encode", "sheet", "plot", "export"})
+    for (const char* stage : {"prescore", "simulate", "render", "encode", "sheet", "plot", "export", "report"})
         EXPECT_NE(stage_status(again.out, stage).find("(up to date)"), std::string::npos) << stage << "\n" << again.out;
     EXPECT_EQ(folder_bytes(out), before);
 }
@@ -87,7 +88,7 @@ TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
     auto r = run_shatter({"run", shot, "-o", out, "--no-progress", "--set", "material.alpha=0"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(stage_status(r.out, "prescore").find("(up to date)"), std::string::npos) << r.out;
-    for (const char* stage : {"simulate", "render", "encode", "sheet", "plot", "export"}) {
+    for (const char* stage : {"simulate", "render", "encode", "sheet", "plot", "export", "report"}) {
         const std::string status = stage_status(r.out, stage);
         EXPECT_FALSE(status.empty()) << stage << "\n" << r.out;
         EXPECT_EQ(status.find("("), std::string::npos) << stage << " should have run: " << status;
@@ -212,10 +213,13 @@ TEST(RunCommand, WithoutFfmpegTheOtherOutputsAreStillMade) {
     for (const char* f : {"cube.model", "cube.traj", "frames/frame_00015.png", "cube.contact.png", "cube.glb", "summary.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
     EXPECT_NE(r.out.find("FAILED:   encode"), std::string::npos) << r.out;
-    // With ffmpeg back, only the movie is made.
+    EXPECT_NE(slurp(out + "/report.html").find("No movie"), std::string::npos);  // the page says so
+    // With ffmpeg back, only the movie is made (and the page that shows it).
     auto again = run_shatter({"run", shot, "-o", out, "--no-progress"});
     EXPECT_EQ(again.exit_code, 0) << again.err;
     EXPECT_TRUE(fs::exists(out + "/cube.mp4"));
+    EXPECT_EQ(slurp(out + "/report.html").find("No movie"), std::string::npos);
+    EXPECT_NE(slurp(out + "/report.html").find("<video"), std::string::npos);
     EXPECT_NE(stage_status(again.out, "render").find("(up to date)"), std::string::npos) << again.out;
 }
 
