@@ -84,7 +84,8 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
     std::string why;
     bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
-    if (usable && report.input.self_intersections > kMaxSelfIntersections(report.input)) {
+    if (usable && settings.repair != RepairMode::Never &&
+        report.input.self_intersections > kMaxSelfIntersections(report.input)) {
         // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many
         // make Mesh_3 refine around the crossings without end.
         usable = false;
@@ -96,8 +97,12 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
                           "allow repair with --repair auto (alpha wrapping), or fix the mesh");
     if (settings.repair == RepairMode::Always || !usable) {
         const double d = report.input.diagonal;
-        spdlog::info("repair: alpha wrap (alpha {:.4g} m, offset {:.4g} m){}", settings.wrap_alpha * d,
-                     settings.wrap_offset * d, usable ? "" : " because " + why);
+        const std::string what =
+            fmt::format("repair: alpha wrap (alpha {:.4g} m, offset {:.4g} m)", settings.wrap_alpha * d, settings.wrap_offset * d);
+        if (usable)
+            spdlog::info("{} (repair = \"always\")", what);
+        else
+            report.choices.note(what, why);
         mesh = alpha_wrap(mesh, settings.wrap_alpha * d, settings.wrap_offset * d);
         report.repaired = true;
     }

@@ -102,6 +102,22 @@ struct BadCase {
 
 class PrescoreBadInput : public ::testing::TestWithParam<BadCase> {};
 
+// Three faces of a tetrahedron: alpha wrapping turns the open soup into a sheet far thinner than
+// a tet, which only thickening can fill.
+const char* kOpenSoup = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n";
+
+// The open soup with the defaults: its walls are given a thickness, and the model says so.
+TEST(PrescoreCommand, AnOpenSoupIsGivenAThicknessAndTheModelRecordsWhy) {
+    TempDir dir;
+    auto r = run_shatter({"prescore", dir.write("sheet.obj", kOpenSoup), "-o", dir.file("m.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("auto: thicken: alpha wrap with offset"), std::string::npos) << r.err;
+    auto info = run_shatter({"info", dir.file("m.model"), "--json"});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("thicken"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("the tets fall apart"), std::string::npos) << info.out;
+}
+
 TEST_P(PrescoreBadInput, ClearMessageNonZeroExitNoOutputLeft) {
     const BadCase& c = GetParam();
     TempDir in, out;
@@ -134,8 +150,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"FlatMesh", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 3 2\nf 2 3 4\n", "flat.obj",
                 {}, 3, "flat.obj"},
         BadCase{"OpenMeshWithRepairOff", open_cube(), "open.obj", {"--repair", "never"}, 3, "--repair auto"},
-        BadCase{"OpenSoupWrappedIntoASheet", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n",
-                "sheet.obj", {}, 3, "--wrap-alpha"},
+        BadCase{"OpenSoupWrappedIntoASheetWithoutAdapt", kOpenSoup, "sheet.obj", {"--no-adapt"}, 3, "adapt"},
         BadCase{"MorePiecesThanTets", kCube, "cube.obj", {"--pieces", "100000"}, 3, "pieces"},
         BadCase{"ZeroThickness", kCube, "cube.obj", {"--hollow", "0"}, 2, "--hollow"},
         BadCase{"NegativeThickness", kCube, "cube.obj", {"--hollow=-0.1"}, 2, "--hollow"},

@@ -178,6 +178,31 @@ TEST(RunCommand, KilledAtAnyMomentAndRunAgainItEndsWithTheSameBytes) {
     EXPECT_GE(landed, 3) << "most kills should land while the run is still going";
 }
 
+// `shatter run MESH`: a mesh file instead of a shot runs the default shot on it (the demo's
+// settings, the mesh made 0.3 m long): the fixture's unit cube becomes a 0.3 m cube of
+// 0.027 m^3, whose mass at the default density is 1100 kg/m^3 x 0.027 m^3 = 29.7 kg.
+TEST(RunCommand, AMeshFileRunsTheDefaultShotOnIt) {
+    TempDir dir;
+    std::filesystem::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
+    const std::string out = dir.file("out");
+    auto r = run_shatter({"run", dir.file("cube.obj"), "-o", out, "--no-progress", "--set", "simulate.duration=0.3",
+                          "--set", "render.width=160", "--set", "render.height=90", "--set", "prescore.pieces=4",
+                          "--set", "prescore.resolution=5", "--set", "prescore.hollow=false"});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    for (const char* f : {"cube.model", "cube.traj", "cube.mp4", "cube.glb", "summary.json", "frames/frame_00008.png"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+    const std::string log = slurp(out + "/run.log");
+    EXPECT_NE(log.find("auto: size 0.3 m"), std::string::npos) << log;
+    auto info = run_shatter({"info", out + "/cube.model"});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("29.7 kg"), std::string::npos) << info.out;
+    // A mesh that is not there is the same clear error as from a shot.
+    r = run_shatter({"run", dir.file("nowhere.stl"), "-o", dir.file("a")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find("nowhere.stl"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("a")));
+}
+
 TEST(RunCommand, MissingMeshMalformedShotAndUnknownKeysAreClearErrors) {
     TempDir dir;
     write_cube_shot(dir);

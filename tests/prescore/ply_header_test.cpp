@@ -28,6 +28,9 @@ TEST(PlyHeader, HeadersOfCommonExportersPass) {
     EXPECT_EQ(problem("ply\r\nformat binary_little_endian 1.0\r\nobj_info x\r\nelement vertex 0\r\n"
                       "property float32 x\r\n\r\nelement face 0\r\nproperty list uint8 int32 vertex_indices\r\n"
                       "end_header\r\n"), "");
+    // Blender 2.47 writes its note as a bare line (assimp-testmodels' PLY/Wuson.ply); assimp skips it.
+    EXPECT_EQ(problem("ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, source file: x\n"
+                      "element vertex 8\nproperty float x\nend_header\n"), "");
     EXPECT_TRUE(looks_like_ply("ply\nformat"));
     EXPECT_TRUE(looks_like_ply("plyx"));  // assimp takes it for a PLY too: the strict check refuses it
     EXPECT_FALSE(looks_like_ply("# ply"));

@@ -1,0 +1,147 @@
+// How prescore adapts to a mesh (prescore/adapt.h): the size it chooses, the tets it fits to a
+// wall thinner than a tet, and the slivers it joins to their nearest pieces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "prescore/adapt.h"
+#include "prescore/mesh_check.h"
+#include "prescore/tet_topology.h"
+
+namespace shatter {
+namespace {
+
+// An axis-aligned box as 12 outward triangles.
+TriangleMesh box(const Vec3& lo, const Vec3& hi) {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return m;
+}
+
+// An n x n x n grid of unit-ish cubes from `lo` with edge `h`, each cube split into 6 tets.
+void add_tet_block(TetMesh& m, const Vec3& lo, double h, int n) {
+    const auto at = [&](int i, int j, int k) {
+        m.vertices.push_back(lo + h * Vec3(i, j, k));
+        return uint32_t(m.vertices.size() - 1);
+    };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) {
+                uint32_t c[8];
+                for (int b = 0; b < 8; ++b) c[b] = at(i + (b & 1), j + (b >> 1 & 1), k + (b >> 2 & 1));
+                // Six tets around the diagonal c0-c7 (Kuhn's subdivision); orientation fixed below.
+                const int paths[6][2] = {{1, 3}, {1, 5}, {2, 3}, {2, 6}, {4, 5}, {4, 6}};
+                for (const auto& p : paths) {
+                    Tet t{c[0], c[p[0]], c[p[0] | p[1]], c[7]};
+                    const auto& v = m.vertices;
+                    if (tet_volume(v[t[0]], v[t[1]], v[t[2]], v[t[3]]) < 0) std::swap(t[2], t[3]);
+                    m.tets.push_back(t);
+                }
+            }
+    // Join the duplicated corner vertices so that neighbouring cubes share faces.
+    std::vector<uint32_t> first(m.vertices.size());
+    for (uint32_t a = 0; a < m.vertices.size(); ++a) {
+        first[a] = a;
+        for (uint32_t b = 0; b < a; ++b)
+            if ((m.vertices[a] - m.vertices[b]).norm() < 1e-12) {
+                first[a] = first[b];
+                break;
+            }
+    }
+    for (Tet& t : m.tets)
+        for (uint32_t& v : t) v = first[v];
+}
+
+TEST(Adapt, SizeWinsOverScaleWhichWinsOverTheFileUnitsAndAUnitlessFileIsMadeThreeTenthsOfAMetreLong) {
+    const TriangleMesh m = box(Vec3(0, 0, 0), Vec3(4, 2, 1));  // longest side 4 units
+    MeshSettings s;
+    AutoChoices choices;
+    s.size = 2.0;
+    s.scale = 0.1;
+    EXPECT_DOUBLE_EQ(choose_scale(m, 0.01, s, choices), 0.5);  // 2 m / 4 units
+    s.size.reset();
+    EXPECT_DOUBLE_EQ(choose_scale(m, 0.01, s, choices), 0.1);
+    s.scale.reset();
+    EXPECT_DOUBLE_EQ(choose_scale(m, 0.01, s, choices), 0.01);  // an FBX file in centimetres
+    EXPECT_TRUE(choices.list.empty());
+    EXPECT_DOUBLE_EQ(choose_scale(m, 0, s, choices), kDefaultSize / 4);
+    ASSERT_EQ(choices.list.size(), 1u);
+    EXPECT_NE(choices.list[0].what.find("size 0.3 m"), std::string::npos) << choices.list[0].what;
+    EXPECT_NE(choices.list[0].why.find("4 units"), std::string::npos) << choices.list[0].why;
+    EXPECT_EQ(choices.to_json()[0]["what"], choices.list[0].what);
+}
+
+// A plate 1 m wide and 1 cm thick: at resolution 20 a tet is 7 cm, seven times the plate's
+// thickness, so Mesh_3 loses it. Adapting ends in one connected body that fills at least the
+// plate and at most the plate grown on every side by the thickening offset.
+TEST(Adapt, APlateThinnerThanATetIsFittedAsOneBodyAndRefusedWithoutAdapt) {
+    const TriangleMesh plate = box(Vec3(0, 0, 0), Vec3(1, 0.01, 1));
+    const MeshCheck check = check_mesh(plate, false);
+    PrescoreSettings ps;
+    MeshSettings ms;
+    AutoChoices choices;
+    const FittedTets fit = fit_tets(plate, plate, check, false, check.diagonal, ms, ps, "plate", choices);
+    ASSERT_FALSE(fit.tets.tets.empty());
+    int32_t clusters = 0;
+    tet_components(build_topology(fit.tets), {}, &clusters);
+    EXPECT_EQ(clusters, 1);
+    double volume = 0;
+    for (const Tet& t : fit.tets.tets)
+        volume += tet_volume(fit.tets.vertices[t[0]], fit.tets.vertices[t[1]], fit.tets.vertices[t[2]],
+                             fit.tets.vertices[t[3]]);
+    const double offset = fit.wrapped ? kThickenOffset * check.diagonal / fit.resolution : 0;
+    EXPECT_GE(volume, 0.9 * 0.01);
+    EXPECT_LE(volume, (1 + 2 * offset) * (0.01 + 2 * offset) * (1 + 2 * offset) * 1.05);
+    ASSERT_FALSE(choices.list.empty());
+    EXPECT_GT(fit.resolution, ps.resolution - 1e-12);
+
+    ms.adapt = false;
+    AutoChoices none;
+    try {
+        fit_tets(plate, plate, check, false, check.diagonal, ms, ps, "plate", none);
+        ADD_FAILURE() << "a plate thinner than a tet was accepted without adapt";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("plate"), std::string::npos) << e.what();
+    }
+}
+
+// A block of 4 x 4 x 4 cubes and, 1 m away, one small cube (6 of 390 tets, 1/512 of the
+// volume): the small cluster is no piece of its own; it joins the piece of the nearest tet.
+TEST(Adapt, ASliverClusterJoinsThePieceNearestToIt) {
+    TetMesh m;
+    add_tet_block(m, Vec3(0, 0, 0), 0.25, 4);
+    add_tet_block(m, Vec3(2, 0.5, 0.5), 0.125, 1);
+    const TetTopology topo = build_topology(m);
+    AutoChoices choices;
+    const Partition p = partition_adapted(m, topo, 3, 1, true, choices);
+    ASSERT_EQ(p.piece_tets.size(), 3u);
+    ASSERT_EQ(p.tet_piece.size(), 390u);
+    // The nearest large tet to the sliver's centroid (2.0625, 0.5625, 0.5625) is in the block's
+    // cube at x in [0.75, 1], y in [0.5, 0.75], z in [0.5, 0.75].
+    uint32_t nearest = 0;
+    double best = HUGE_VAL;
+    for (uint32_t t = 0; t < 384; ++t) {
+        Vec3 c = Vec3::Zero();
+        for (uint32_t v : m.tets[t]) c += m.vertices[v] / 4;
+        const double d = (c - Vec3(2.0625, 0.5625, 0.5625)).squaredNorm();
+        if (d < best) best = d, nearest = t;
+    }
+    for (uint32_t t = 384; t < 390; ++t) EXPECT_EQ(p.tet_piece[t], p.tet_piece[nearest]);
+    ASSERT_EQ(choices.list.size(), 1u);
+    EXPECT_NE(choices.list[0].what.find("1 small tet clusters (6 tets"), std::string::npos) << choices.list[0].what;
+
+    // Without adapt the sliver is a body of its own and needs its own piece.
+    AutoChoices none;
+    const Partition q = partition_adapted(m, topo, 3, 1, false, none);
+    for (uint32_t t = 385; t < 390; ++t) EXPECT_EQ(q.tet_piece[t], q.tet_piece[384]);
+    for (uint32_t t = 0; t < 384; ++t) EXPECT_NE(q.tet_piece[t], q.tet_piece[384]);
+    EXPECT_TRUE(none.list.empty());
+}
+
+}  // namespace
+}  // namespace shatter
