@@ -197,6 +197,7 @@ ojson to_json(const MaterialSettings& s) {
     j["strength"] = s.strength;
     j["alpha"] = s.alpha;
     put_surface(j, s.surface);
+    if (s.stiffen) j["stiffen"] = true;  // only when on: trajectories made without it keep their bytes
     return j;
 }
 

@@ -104,6 +104,7 @@ struct MaterialSettings {
     double strength = 1e6;          // tensile strength (unit: Pa = N/m^2)
     double alpha = 1.0;             // fraction of stored energy given back at a break (unit: 1, >= 0)
     SurfaceSettings surface{0.5, 0.1};
+    bool stiffen = false;           // raise a stiffness too soft for the step to the least that converges (false: refuse)
 };
 inline constexpr Limits kStiffnessLimits{1e-3, 1e18, "N/m^3"};
 inline constexpr Limits kDampingLimits{0, 1e15, "N s/m^3"};

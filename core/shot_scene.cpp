@@ -240,6 +240,7 @@ void read_material_section(TomlSection& s, MaterialSettings& material) {
     s.number("damping", material.damping, kDampingLimits);
     s.number("strength", material.strength, kStrengthLimits);
     s.number("alpha", material.alpha, kAlphaLimits);
+    s.boolean("stiffen", material.stiffen);
     read_surface(s, material.surface);
     s.finish();
 }

@@ -32,6 +32,23 @@ EnergizeSettings energize_settings(const SimulationInput& in) {
     return e;
 }
 
+// The least [material] stiffness with which every constraint's CFM stays within max_cfm at this
+// step (0 when the shot's already does), and the first constraint that needs more.
+double least_stiffness(const BulletWorld& world, const Model& model, const SimulationInput& in, size_t* first) {
+    double need = 0;
+    for (size_t c = 0; c < world.constraint_count(); ++c) {
+        if (!world.active(c)) continue;
+        double w = 0;
+        const double cfm = world.current_max_cfm(c, &w);
+        if (cfm <= in.simulate.max_cfm) continue;
+        const double area = model.constraints[c].area;
+        const double k_min = min_stiffness_for_cfm(in.material.damping * area, world.h(), w, in.simulate.max_cfm) / area;
+        if (need == 0) *first = c;
+        need = std::max(need, k_min);
+    }
+    return need;
+}
+
 // Refuses constraints whose spring is too soft for its bodies at this step: the solver diverges
 // as CFM nears 1 (simulate/spring.h).
 void check_cfm(const BulletWorld& world, const Model& model, const SimulationInput& in) {
@@ -155,9 +172,26 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
 
 uint32_t frame_count(const SimulateSettings& s) { return uint32_t(std::llround(s.duration * s.fps)) + 1; }
 
-SimulationResult simulate(const Model& model, const SimulationInput& in, const std::string& model_id) {
-    WorldSetup setup{in.scene, in.object, in.material, 1.0 / (in.simulate.fps * in.simulate.substeps),
-                     in.simulate.iterations, in.simulate.break_criterion == BreakCriterion::BulletImpulse};
+SimulationResult simulate(const Model& model, const SimulationInput& shot_input, const std::string& model_id) {
+    const double h = 1.0 / (shot_input.simulate.fps * shot_input.simulate.substeps);
+    const bool bullet_impulse = shot_input.simulate.break_criterion == BreakCriterion::BulletImpulse;
+    SimulationInput in = shot_input;
+    if (in.material.stiffen) {
+        // A stiffness too soft for the step (pieces smaller or heavier than the shot was tuned
+        // for) is raised to the least that converges, with a margin, instead of refused; the
+        // trajectory's settings then hold the stiffness used.
+        size_t first = 0;
+        const double need = least_stiffness(BulletWorld(model, {in.scene, in.object, in.material, h,
+                                                                 in.simulate.iterations, bullet_impulse}),
+                                            model, in, &first);
+        if (need > 0) {
+            const double stiffness = 1.05 * need;
+            spdlog::info("auto: stiffness {:.4g} -> {:.4g} N/m^3 (constraint {} would need CFM above {:g} at h = {:.4g} s; "
+                         "[material] stiffen = true)", in.material.stiffness, stiffness, first, in.simulate.max_cfm, h);
+            in.material.stiffness = stiffness;
+        }
+    }
+    WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
     BulletWorld world(model, setup);
     check_cfm(world, model, in);
 

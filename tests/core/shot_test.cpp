@@ -67,6 +67,8 @@ TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
     EXPECT_EQ(to_json(mine.scene), to_json(demo.scene));
     EXPECT_EQ(to_json(mine.object), to_json(demo.object));
     Shot alpha1 = default_shot_for_mesh("horse.3ds");
+    EXPECT_TRUE(alpha1.material.stiffen);
+    alpha1.material.stiffen = false;
     EXPECT_EQ(to_json(alpha1.material), to_json(demo.material));
     EXPECT_EQ(to_json(alpha1.simulate), to_json(demo.simulate));
     RenderSettings render = demo.render;
