@@ -1,5 +1,6 @@
 #include "simulate/simulate.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -153,7 +154,9 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
 
 }  // namespace
 
-uint32_t frame_count(const SimulateSettings& s) { return uint32_t(std::llround(s.duration * s.fps)) + 1; }
+uint32_t frame_count(const SimulateSettings& s) {
+    return uint32_t(std::llround((s.auto_duration ? s.max_duration : s.duration) * s.fps)) + 1;
+}
 
 SimulationResult simulate(const Model& model, const SimulationInput& in, const std::string& model_id) {
     WorldSetup setup{in.scene, in.object, in.material, 1.0 / (in.simulate.fps * in.simulate.substeps),
@@ -174,6 +177,20 @@ SimulationResult simulate(const Model& model, const SimulationInput& in, const s
     out.energy.push_back(run.books());
 
     const uint32_t frames = frame_count(in.simulate);
+    // duration = "auto": the fastest point of each piece (|v| + |w| r) against kRestSpeed.
+    std::vector<double> radius(world.pieces(), 0.0);
+    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i)
+        for (const Vec3& v : model.pieces[i].surface.vertices)
+            radius[i] = std::max(radius[i], (v - model.pieces[i].mass.center).norm());
+    auto at_rest = [&] {
+        for (uint32_t i = 0; i < world.pieces(); ++i)
+            if (world.piece_dynamic(i) &&
+                !(world.piece_velocity(i).norm() + world.piece_angular_velocity(i).norm() * radius[i] < kRestSpeed))
+                return false;
+        return true;
+    };
+    const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
+    uint32_t still = 0;  // frames in a row at rest
     Progress progress("simulate", frames - 1);
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
         for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
@@ -185,6 +202,13 @@ SimulationResult simulate(const Model& model, const SimulationInput& in, const s
         record(world, t);
         out.energy.push_back(run.books());
         progress.advance();
+        if (in.simulate.auto_duration) {
+            still = at_rest() ? still + 1 : 0;
+            if (still >= hold_frames) {
+                out.rest_time = (f - still) / in.simulate.fps;
+                break;
+            }
+        }
     }
     t.complete = out.complete;
     return out;
