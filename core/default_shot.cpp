@@ -25,7 +25,7 @@ friction = 0.6
 restitution = 0.1
 
 [simulate]
-duration = 4.0
+duration = "auto"
 fps = 30
 substeps = 16
 iterations = 20
