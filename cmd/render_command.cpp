@@ -18,7 +18,7 @@ namespace {
 
 struct RenderFlags {
     std::string model, trajectory, output, shot;
-    std::optional<std::string> size, frames, camera_position, camera_target, colour_mode, material_colour, background;
+    std::optional<std::string> size, frames, camera, camera_position, camera_target, colour_mode, material_colour, background;
     std::optional<double> fov, key_azimuth, key_elevation, fracture_tint, cavity_shade;
     std::optional<uint32_t> msaa, shadow_map;
     bool no_shadows = false;
@@ -97,6 +97,7 @@ RenderSettings settings_from(const RenderFlags& f) {
     }
     if (f.no_shadows) s.shadows = false;
     if (f.colour_mode) s.colour_mode = *parse_colour_mode(*f.colour_mode);
+    if (f.camera) s.camera = *parse_camera_mode(*f.camera);
     if (f.material_colour) s.material_colour = parse_colour("--material-colour", *f.material_colour);
     if (f.background) s.background = parse_colour("--background", *f.background);
     return s;
@@ -137,8 +138,12 @@ RunCommand add_render_command(CLI::App& root) {
     c->add_option("--frames", f->frames, option_help("render frames A to B-1 only (A:B, A:, :B), e.g. to spread a "
                                                      "render over processes; a frame's bytes do not depend on it",
                                                      "frame numbers from 0", "all"));
+    c->add_option("--camera", f->camera,
+                  option_help("without --camera-position: follow the pieces, or frame the whole animation", "",
+                              to_string(d.camera)))
+        ->check(CLI::IsMember({"follow", "whole"}));
     c->add_option("--camera-position", f->camera_position,
-                  option_help("camera position X,Y,Z", "m", "framed on the whole animation"));
+                  option_help("camera position X,Y,Z", "m", "--camera"));
     c->add_option("--camera-target", f->camera_target,
                   option_help("the point the camera looks at X,Y,Z", "m", "the centre of the animation"));
     c->add_option("--fov", f->fov, option_help("vertical field of view", "degrees", fmt::format("{:g}", d.fov)));

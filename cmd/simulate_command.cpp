@@ -43,6 +43,7 @@ SimulationInput input_from(const SimulateFlags& f) {
     override_checked(in.material.damping, f.damping, "--damping", kDampingLimits);
     override_checked(in.material.strength, f.strength, "--strength", kStrengthLimits);
     override_checked(in.simulate.duration, f.duration, "--duration", kDurationLimits);
+    if (f.duration) in.simulate.auto_duration = false;  // a flag's seconds replace the shot's "auto"
     override_checked(in.simulate.fps, f.fps, "--fps", kFpsLimits);
     override_checked(in.simulate.rate_limit, f.rate_limit, "--rate-limit", kRateLimitLimits);
     override_checked(in.simulate.substeps, f.substeps, "--substeps", kSubstepsLimits);

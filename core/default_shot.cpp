@@ -28,7 +28,7 @@ restitution = 0.1
 stiffen = true
 
 [simulate]
-duration = 4.0
+duration = "auto"
 fps = 30
 substeps = 16
 iterations = 20

@@ -19,6 +19,10 @@
 namespace shatter {
 
 enum class ColourMode { Pieces, Material };  // pieces: the palette by piece id; material: one colour
+// The camera when the shot places none (no camera_position): "follow" frames the object at the
+// start and its fragments after, moving smoothly with them (render/camera_path.h); "whole" stays
+// fixed, framing the whole animation at once.
+enum class CameraMode { Follow, Whole };
 
 struct RenderSettings {
     uint32_t width = 1280;   // (unit: pixels)
@@ -27,6 +31,7 @@ struct RenderSettings {
     // position without a target looks at the centre of those bounds.
     std::optional<Vec3> camera_position;  // (unit: m, world)
     std::optional<Vec3> camera_target;    // (unit: m, world)
+    CameraMode camera = CameraMode::Follow;  // without camera_position: follow the pieces, or frame the whole animation
     double fov = 35;                      // vertical field of view (unit: degrees)
     bool shadows = true;                  // the key light casts shadows (shadow map)
     uint32_t shadow_map = 1024;           // shadow map width and height (unit: texels)
@@ -51,6 +56,8 @@ inline constexpr Limits kTintLimits{0, 1, "(fraction)"};
 
 const char* to_string(ColourMode m);
 std::optional<ColourMode> parse_colour_mode(const std::string& text);
+const char* to_string(CameraMode m);
+std::optional<CameraMode> parse_camera_mode(const std::string& text);
 // "#rrggbb" (sRGB) to linear RGB; nullopt when the text is not of that form.
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text);
 std::string srgb_hex(const std::array<float, 3>& linear);

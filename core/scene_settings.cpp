@@ -216,6 +216,10 @@ ojson to_json(const SimulateSettings& s) {
     // Only when not the default, so that trajectories made before the key existed keep their bytes.
     if (s.break_criterion != BreakCriterion::Force) j["break_criterion"] = to_string(s.break_criterion);
     if (s.on_instability != InstabilityMode::Stop) j["on_instability"] = to_string(s.on_instability);
+    if (s.auto_duration) {
+        j["duration"] = "auto";
+        j["max_duration"] = s.max_duration;
+    }
     return j;
 }
 

@@ -128,6 +128,10 @@ enum class InstabilityMode { Stop, Clamp };
 
 struct SimulateSettings {
     double duration = 4.0;      // (unit: s)
+    // duration = "auto": simulate until every piece has been at rest for a short hold
+    // (simulate/simulate.h: kRestSpeed, kRestHold), at most max_duration; `duration` is then unused.
+    bool auto_duration = false;
+    double max_duration = 10;   // the cap of duration = "auto" (unit: s)
     double fps = 30;            // frames recorded per second (unit: 1/s)
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     uint32_t iterations = 20;   // sequential-impulse iterations per step

@@ -84,6 +84,14 @@ std::optional<ColourMode> parse_colour_mode(const std::string& text) {
     return std::nullopt;
 }
 
+const char* to_string(CameraMode m) { return m == CameraMode::Follow ? "follow" : "whole"; }
+
+std::optional<CameraMode> parse_camera_mode(const std::string& text) {
+    if (text == "follow") return CameraMode::Follow;
+    if (text == "whole") return CameraMode::Whole;
+    return std::nullopt;
+}
+
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text) {
     if (text.size() != 7 || text[0] != '#') return std::nullopt;
     std::array<float, 3> out{};
@@ -123,6 +131,13 @@ void read_render_section(TomlSection& s, RenderSettings& r) {
     if (r.camera_position && r.camera_target && (*r.camera_position - *r.camera_target).norm() < 1e-6)
         s.fail(s.node("camera_target"), "render.camera_target equals render.camera_position",
                "place the camera away from the point it looks at");
+    std::string camera;
+    if (s.text("camera", camera)) {
+        auto m = parse_camera_mode(camera);
+        if (!m) s.fail(s.node("camera"), fmt::format("render.camera = \"{}\" is not a camera mode", camera),
+                       "use \"follow\" (moves with the pieces) or \"whole\" (fixed, frames the whole animation)");
+        r.camera = *m;
+    }
     s.number("fov", r.fov, kFovLimits);
     s.boolean("shadows", r.shadows);
     s.integer("shadow_map", r.shadow_map, kShadowMapLimits);
@@ -150,6 +165,7 @@ nlohmann::ordered_json to_json(const RenderSettings& s) {
     j["height"] = s.height;
     if (s.camera_position) j["camera_position"] = {s.camera_position->x(), s.camera_position->y(), s.camera_position->z()};
     if (s.camera_target) j["camera_target"] = {s.camera_target->x(), s.camera_target->y(), s.camera_target->z()};
+    if (!s.camera_position) j["camera"] = to_string(s.camera);  // what frames the shot when it places no camera
     j["fov"] = s.fov;
     j["shadows"] = s.shadows;
     j["shadow_map"] = s.shadow_map;

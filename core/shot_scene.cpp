@@ -246,7 +246,16 @@ void read_material_section(TomlSection& s, MaterialSettings& material) {
 }
 
 void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
-    s.number("duration", simulate.duration, kDurationLimits);
+    const toml::node* duration = s.node("duration");
+    if (duration && duration->is_string()) {
+        if (duration->as_string()->get() != "auto")
+            s.fail(duration, fmt::format("{} must be a number of seconds or \"auto\"", s.key_name("duration")),
+                   "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)");
+        simulate.auto_duration = true;
+    } else {
+        s.number("duration", simulate.duration, kDurationLimits);
+    }
+    s.number("max_duration", simulate.max_duration, kDurationLimits);
     s.number("fps", simulate.fps, kFpsLimits);
     s.integer("substeps", simulate.substeps, kSubstepsLimits);
     s.integer("iterations", simulate.iterations, kIterationsLimits);

@@ -8,7 +8,9 @@
 //    │                              with its own material; assimp merges them into one glTF mesh
 //    │                              with one primitive per kind
 //    └─ "prop_{i}[_{name}]"         the kinematic bodies of the trajectory's scene (box, sphere)
-//   animation "fracture": one channel per body, a translation and a rotation key at every frame
+//    └─ "camera"                    with render settings: render's camera (camera_path.h); no mesh
+//   animation "fracture": one channel per body (and the camera, when it moves), a translation
+//   and a rotation key at every frame
 //
 // A node's transform is then exactly the trajectory's pose [R | p] (BodyPose: world =
 // R (x - origin) + p), and its rest transform is the pose of frame 0, for viewers that do not
@@ -29,6 +31,9 @@
 //    costs O(accessors x file size), 7 accessors per piece: measured (2 cores, glibc malloc)
 //    0.03 s for the 10-piece bunny x 121 frames (0.3 MB), 0.12 s for 125 boxes, 2.1 s for 512,
 //    6.7 s for 1,000 (7 MB), 23 s for 2,197; most of it page faults of the reallocations.
+//  - its glTF2 exporter writes no cameras (aiScene::mCameras is ignored): the camera node is
+//    exported and animated as an empty node, and the camera itself (glTF "cameras", the node's
+//    "camera") is added to the GLB's JSON chunk afterwards; the binary chunk is left as it is.
 // We export to memory (ExportToBlob) and write with write_file_atomic: a temporary name beside
 // the target, fsync, rename; a failed write leaves the old file or none, never a temporary.
 #include "pipeline/export_glb.h"
@@ -37,6 +42,8 @@
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string_view>
@@ -48,6 +55,7 @@
 #include "core/error.h"
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
+#include "render/camera_path.h"
 #include "render/mesh_builder.h"
 
 namespace shatter {
@@ -55,6 +63,7 @@ namespace shatter {
 namespace {
 
 constexpr float kRoughness = 0.6f;  // a matte plastic look; glTF's default (1) is chalk
+constexpr const char* kCameraNode = "camera";
 
 const char* kind_name(FaceKind k) {
     switch (k) {
@@ -194,25 +203,39 @@ aiMatrix4x4 pose_matrix(const BodyPose& p) {
     return m;
 }
 
-// One channel per body with a key per frame. Quaternions are normalized and kept on one
-// hemisphere from key to key, so that interpolation between frames turns the short way.
-aiAnimation* make_animation(const Trajectory& t, const std::vector<aiNode*>& bodies) {
+// The camera's pose: glTF cameras look down their -z with +y up; the view matrix's rows are the
+// camera's right, up and backward axes in the world.
+BodyPose camera_pose(const Camera& c) {
+    BodyPose p;
+    p.position = c.position;
+    p.rotation = Eigen::Quaternionf(Eigen::Matrix3f(c.view.block<3, 3>(0, 0).transpose())).normalized();
+    return p;
+}
+
+// One channel per body (and one for the camera when `cameras` has one per frame) with a key per
+// frame. Quaternions are normalized and kept on one hemisphere from key to key, so that
+// interpolation between frames turns the short way.
+aiAnimation* make_animation(const Trajectory& t, const std::vector<aiNode*>& bodies, const std::vector<Camera>& cameras,
+                            aiNode* camera) {
     const uint32_t frames = t.frames();
+    const bool moving = camera && cameras.size() == frames && frames > 1;
     auto* anim = new aiAnimation();
     anim->mName = aiString("fracture");  // not "shatter": glTF ids are shared by every kind of object
     anim->mTicksPerSecond = 1.0;  // keys in seconds: the exporter writes mTime / mTicksPerSecond
     anim->mDuration = (frames - 1) / t.fps;
-    anim->mNumChannels = static_cast<unsigned>(bodies.size());
-    anim->mChannels = new aiNodeAnim*[bodies.size()];
-    for (uint32_t b = 0; b < bodies.size(); ++b) {
+    const size_t channels = bodies.size() + (moving ? 1 : 0);
+    anim->mNumChannels = static_cast<unsigned>(channels);
+    anim->mChannels = new aiNodeAnim*[channels];
+    for (uint32_t b = 0; b < channels; ++b) {
+        const bool is_camera = b == bodies.size();
         auto* ch = anim->mChannels[b] = new aiNodeAnim();
-        ch->mNodeName = bodies[b]->mName;
+        ch->mNodeName = is_camera ? camera->mName : bodies[b]->mName;
         ch->mNumPositionKeys = ch->mNumRotationKeys = frames;
         ch->mPositionKeys = new aiVectorKey[frames];
         ch->mRotationKeys = new aiQuatKey[frames];
         Eigen::Quaternionf previous = Eigen::Quaternionf::Identity();
         for (uint32_t f = 0; f < frames; ++f) {
-            const BodyPose& p = t.pose(f, b);
+            const BodyPose p = is_camera ? camera_pose(cameras[f]) : t.pose(f, b);
             Eigen::Quaternionf q = p.rotation.normalized();
             if (f > 0 && q.dot(previous) < 0) q.coeffs() = -q.coeffs();
             previous = q;
@@ -224,16 +247,23 @@ aiAnimation* make_animation(const Trajectory& t, const std::vector<aiNode*>& bod
     return anim;
 }
 
-std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, const std::string& where) {
+std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, const std::vector<Camera>& cameras,
+                                     const std::string& where) {
     const std::vector<KinematicSettings> props = trajectory_props(t, where);
     SceneParts parts;
     for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model.pieces[i], i);
     for (uint32_t i = 0; i < props.size(); ++i) add_prop(parts, props[i], i, where);
     for (uint32_t b = 0; b < parts.nodes.size(); ++b) parts.nodes[b]->mTransformation = pose_matrix(t.pose(0, b));
+    const std::vector<aiNode*> bodies = parts.nodes;
+    aiNode* camera = nullptr;
+    if (!cameras.empty()) {
+        camera = parts.node(kCameraNode, {});
+        camera->mTransformation = pose_matrix(camera_pose(cameras.front()));
+    }
 
     auto scene = std::make_unique<aiScene>();
     scene->mRootNode = new aiNode("shatter");
-    scene->mAnimations = new aiAnimation*[1]{make_animation(t, parts.nodes)};
+    scene->mAnimations = new aiAnimation*[1]{make_animation(t, bodies, cameras, camera)};
     scene->mNumAnimations = 1;
     scene->mRootNode->addChildren(static_cast<unsigned>(parts.nodes.size()), parts.nodes.data());
     parts.nodes.clear();
@@ -248,9 +278,62 @@ std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, co
     return scene;
 }
 
+uint32_t read_u32(const std::string& b, size_t at) {
+    return uint32_t(uint8_t(b[at])) | uint32_t(uint8_t(b[at + 1])) << 8 | uint32_t(uint8_t(b[at + 2])) << 16 |
+           uint32_t(uint8_t(b[at + 3])) << 24;
+}
+void put_u32(std::string& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(char((v >> (8 * i)) & 0xff));
+}
+
+// The GLB with a perspective camera attached to the node named kCameraNode: its JSON chunk
+// rewritten (padded with spaces to 4 bytes, as GLB asks), the binary chunk copied.
+std::string add_camera(const std::string& glb, const std::vector<Camera>& cameras, const RenderSettings& s,
+                       const std::string& where) {
+    auto fail = [&](const char* what) {
+        return Error(ExitCode::Internal, fmt::format("{}: assimp's GLB is not as expected: {} (fix: report this as a "
+                                                     "bug in shatter)", where, what));
+    };
+    if (glb.size() < 20 || glb.compare(0, 4, "glTF") != 0 || read_u32(glb, 16) != 0x4E4F534Au) throw fail("no JSON chunk");
+    const uint32_t json_length = read_u32(glb, 12);
+    if (20 + size_t(json_length) > glb.size()) throw fail("JSON chunk length");
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(glb.substr(20, json_length), nullptr, false);
+    if (j.is_discarded() || !j.contains("nodes")) throw fail("JSON chunk");
+    // Near and far: the nearest near plane and the farthest far plane of the path.
+    double znear = INFINITY, zfar = 0;
+    for (const Camera& c : cameras) {
+        const double a = c.projection(2, 2), b = c.projection(2, 3);
+        znear = std::min(znear, b / (a - 1));
+        zfar = std::max(zfar, b / (a + 1));
+    }
+    j["cameras"] = nlohmann::ordered_json::array({{{"name", kCameraNode},
+                                                   {"type", "perspective"},
+                                                   {"perspective",
+                                                    {{"aspectRatio", double(s.width) / s.height},
+                                                     {"yfov", s.fov * M_PI / 180},
+                                                     {"zfar", zfar},
+                                                     {"znear", znear}}}}});
+    bool found = false;
+    for (auto& node : j["nodes"])
+        if (node.value("name", std::string()) == kCameraNode) node["camera"] = 0, found = true;
+    if (!found) throw fail("no camera node");
+    std::string text = j.dump();
+    while (text.size() % 4) text.push_back(' ');
+    const std::string rest = glb.substr(20 + json_length);  // the binary chunk, if any
+    std::string out = "glTF";
+    put_u32(out, 2);
+    put_u32(out, uint32_t(12 + 8 + text.size() + rest.size()));
+    put_u32(out, uint32_t(text.size()));
+    put_u32(out, 0x4E4F534Au);  // "JSON"
+    out += text;
+    out += rest;
+    return out;
+}
+
 }  // namespace
 
-void export_glb(const Model& model, const Trajectory& trajectory, const std::string& glb_path) {
+void export_glb(const Model& model, const Trajectory& trajectory, const std::string& glb_path,
+                const RenderSettings* camera) {
     if (trajectory.pieces != model.pieces.size())
         throw_input_error(glb_path, fmt::format("the trajectory moves {} pieces but the model has {}",
                                                 trajectory.pieces, model.pieces.size()),
@@ -260,7 +343,19 @@ void export_glb(const Model& model, const Trajectory& trajectory, const std::str
     if (!(trajectory.fps > 0))
         throw_input_error(glb_path, fmt::format("the trajectory's frame rate is {} frames/s", trajectory.fps),
                           "simulate again; the file is inconsistent");
-    const std::unique_ptr<aiScene> scene = build_scene(model, trajectory, glb_path);
+    std::vector<Camera> cameras;
+    if (camera) {
+        RenderScene rs;
+        rs.model = &model;
+        rs.trajectory = &trajectory;
+        rs.scene.kinematic = trajectory_props(trajectory, glb_path);
+        if (!trajectory.settings_json.empty()) {
+            const nlohmann::json settings = nlohmann::json::parse(trajectory.settings_json, nullptr, false);
+            if (settings.is_object() && settings.contains("scene")) rs.scene = scene_from_json(settings["scene"], glb_path);
+        }
+        cameras = make_camera_path(rs, *camera);
+    }
+    const std::unique_ptr<aiScene> scene = build_scene(model, trajectory, cameras, glb_path);
 
     Assimp::Exporter exporter;
     const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), "glb2");
@@ -270,7 +365,9 @@ void export_glb(const Model& model, const Trajectory& trajectory, const std::str
     if (blob->next)  // a .glb is one file; a second blob would be a buffer we failed to embed
         throw Error(ExitCode::Internal, fmt::format("{}: assimp's glTF exporter wrote more than one file (fix: "
                                                     "report this as a bug in shatter)", glb_path));
-    write_file_atomic(glb_path, std::string_view(static_cast<const char*>(blob->data), blob->size));
+    std::string bytes(static_cast<const char*>(blob->data), blob->size);
+    if (camera) bytes = add_camera(bytes, cameras, *camera, glb_path);
+    write_file_atomic(glb_path, bytes);
 }
 
 }  // namespace shatter

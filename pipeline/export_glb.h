@@ -1,16 +1,21 @@
 // The animation as a binary glTF (.glb) that Blender imports: one node per piece (and per
 // kinematic body) with its mesh and material colour, and one animation whose channels key every
 // node's translation and rotation at every recorded frame. Written with assimp's exporter.
+// Given the render settings, it also holds the camera render draws with (node "camera", a glTF
+// perspective camera of the same vertical field of view and aspect), keyed at every frame when
+// it moves (render/camera_path.h), so that the file opens in a DCC tool with the movie's view.
 #pragma once
 
 #include <string>
 
 #include "core/model.h"
+#include "core/render_settings.h"
 #include "core/trajectory.h"
 
 namespace shatter {
 
 // Throws Error(Io) when the file cannot be written (atomically: temporary name, then rename).
-void export_glb(const Model& model, const Trajectory& trajectory, const std::string& glb_path);
+void export_glb(const Model& model, const Trajectory& trajectory, const std::string& glb_path,
+                const RenderSettings* camera = nullptr);
 
 }  // namespace shatter

@@ -28,6 +28,7 @@
 #include "pipeline/stage_cache.h"
 #include "prescore/pieces_ply.h"
 #include "prescore/prescore.h"
+#include "render/camera_path.h"
 #include "render/render.h"
 #include "simulate/recording.h"
 #include "simulate/simulate.h"
@@ -137,8 +138,9 @@ public:
         finishing_stage(Stage::Plot, {name_ + ".energy.png"},
                         [&] { return json{{"energy", file_hash(file(".energy.csv"))}, {"title", name_}}; },
                         [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); });
-        finishing_stage(Stage::Export, {name_ + ".glb"}, [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}}; },
-                        [&] { export_glb(model(), trajectory(), file(".glb")); });
+        finishing_stage(Stage::Export, {name_ + ".glb"},
+                        [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}}; },
+                        [&] { export_glb(model(), trajectory(), file(".glb"), &shot_.render); });
         write_summary();
         finishing_stage(Stage::Report, report_stage_outputs(), [&] { return report_stage_inputs(dir_.string(), name_, shot_, result_.summary); },
                         [&] { write_report(dir_.string(), name_, shot_, result_.summary); });
@@ -382,6 +384,11 @@ private:
                 spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first,
                              range.end - 1, range.end - range.first - rr.frames);
             }
+            const CameraCoverage cover = camera_coverage(scene, shot_.render);
+            spdlog::info("render: camera {}: {:.0f}% of the pieces in view in the first frame, at least {:.0f}% in "
+                         "every frame (frame {}), {:.2f} s still at the end",
+                         shot_.render.camera_position ? "placed by the shot" : to_string(shot_.render.camera),
+                         100 * cover.first, 100 * cover.least, cover.least_frame, cover.still_at_end);
             if (all_frames_present()) stamps_.write("render", key, {});
             r.outcome = StageOutcome::Ran;
         }

@@ -9,7 +9,6 @@ namespace {
 
 constexpr double kAutoAzimuth = 30 * M_PI / 180;    // right of +z
 constexpr double kAutoElevation = 22 * M_PI / 180;  // above the horizon
-constexpr double kFill = 0.9;                       // the box fills the inner 90% of the image
 
 // An up vector not parallel to the view direction.
 Eigen::Vector3f up_for(const Eigen::Vector3f& forward) {
@@ -56,28 +55,38 @@ Camera make_camera(const Eigen::AlignedBox3d& bounds, const std::vector<Ball>& b
     const double aspect = double(s.width) / s.height;
     const double tan_v = std::tan(s.fov * M_PI / 360), tan_h = tan_v * aspect;
     const Vec3 centre = bounds.center();
-    const double radius = bounds.sizes().norm() / 2;
     Vec3 eye, target = centre;
     if (s.camera_position) {
         eye = *s.camera_position;
         if (s.camera_target) target = *s.camera_target;
     } else {
-        const Vec3 dir(std::sin(kAutoAzimuth) * std::cos(kAutoElevation), std::sin(kAutoElevation),
-                       std::cos(kAutoAzimuth) * std::cos(kAutoElevation));
+        const Vec3 dir = auto_view_direction();
         // Camera basis: right, up, and `dir` pointing back toward the eye.
         const Vec3 right = Vec3(0, 1, 0).cross(dir).normalized(), up = dir.cross(right);
         double distance = 0;
         auto fit = [&](const Vec3& point, double r) {
             const Vec3 q = point - centre;
             const double depth = q.dot(dir);  // toward the eye
-            distance = std::max(distance, depth + (std::abs(q.dot(right)) + r) / (kFill * tan_h));
-            distance = std::max(distance, depth + (std::abs(q.dot(up)) + r) / (kFill * tan_v));
+            distance = std::max(distance, depth + (std::abs(q.dot(right)) + r) / (kAutoFill * tan_h));
+            distance = std::max(distance, depth + (std::abs(q.dot(up)) + r) / (kAutoFill * tan_v));
         };
         for (const Ball& b : balls) fit(b.centre, b.radius);
         if (balls.empty())
             for (int i = 0; i < 8; ++i) fit(bounds.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)), 0);
         eye = centre + dir * distance;
     }
+    return camera_looking(eye, target, bounds, s);
+}
+
+Vec3 auto_view_direction() {
+    return Vec3(std::sin(kAutoAzimuth) * std::cos(kAutoElevation), std::sin(kAutoElevation),
+                std::cos(kAutoAzimuth) * std::cos(kAutoElevation));
+}
+
+Camera camera_looking(const Vec3& eye, const Vec3& target, const Eigen::AlignedBox3d& bounds, const RenderSettings& s) {
+    const double aspect = double(s.width) / s.height;
+    const Vec3 centre = bounds.center();
+    const double radius = bounds.sizes().norm() / 2;
     Camera c;
     c.position = eye.cast<float>();
     c.target = target.cast<float>();

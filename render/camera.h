@@ -28,4 +28,12 @@ Eigen::Matrix4f orthographic(float half_width, float half_height, float near, fl
 // `balls` empty: the eight corners of `bounds` are framed instead.
 Camera make_camera(const Eigen::AlignedBox3d& bounds, const std::vector<Ball>& balls, const RenderSettings& s);
 
+// The automatic cameras' view direction, from the target toward the eye: 30 degrees right of
+// +z, 22 degrees above the horizon.
+Vec3 auto_view_direction();
+inline constexpr double kAutoFill = 0.9;  // framed balls fill the inner 90% of the image
+// A camera at `eye` looking at `target`, its near and far planes enclosing `bounds` (the whole
+// animation) and the ground out to where it has faded.
+Camera camera_looking(const Vec3& eye, const Vec3& target, const Eigen::AlignedBox3d& bounds, const RenderSettings& s);
+
 }  // namespace shatter

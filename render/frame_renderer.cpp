@@ -7,6 +7,7 @@
 
 #include "render/gl.h"
 #include "render/gl_context.h"
+#include "render/camera_path.h"
 #include "render/scene_bounds.h"
 #include "render/shaders.h"
 
@@ -39,8 +40,9 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
       settings_(settings),
       region_(region),
       bounds_(animation_bounds(animation_balls(scene))),
-      camera_(make_camera(bounds_, animation_balls(scene), settings)),
-      lights_(make_lights(bounds_, camera_, settings)),
+      cameras_(make_camera_path(scene, settings)),
+      // The lights depend on the camera's direction only, which the path keeps.
+      lights_(make_lights(bounds_, cameras_.front(), settings)),
       target_(settings.width, settings.height, settings.msaa),
       shadow_program_(shaders::kShadowVertex, shaders::kShadowFragment, "shadow") {
     const Trajectory& t = *scene.trajectory;
@@ -69,9 +71,11 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         if (p.id()) continue;
         const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade);
         p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
-        // Camera, lights, shadow frustum and fade are fixed for the whole render: set once.
+        // Lights, shadow frustum and fade are fixed for the whole render: set once (and the
+        // camera, unless it moves).
         p.use();
         set_scene_uniforms(p);
+        set_camera_uniforms(p, cameras_.front());
     }
     check_gl("scene setup");
 }
@@ -181,10 +185,8 @@ void FrameRenderer::shadow_pass(uint32_t frame) {
 
 void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     const auto& bg = settings_.background;
-    p.set("u_view_projection", Eigen::Matrix4f(camera_.projection * camera_.view));
     p.set("u_shadow_view_projection", lights_.shadow_view_projection);
     p.set("u_normal_offset", 1.5f * lights_.shadow_texel);
-    p.set("u_camera", camera_.position);
     p.set("u_key_direction", lights_.key_direction);
     p.set("u_key_colour", lights_.key_colour);
     p.set("u_fill_direction", lights_.fill_direction);
@@ -198,6 +200,11 @@ void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     p.set("u_fade_start", float(kFadeStart) * radius);
     p.set("u_fade_end", float(kFadeEnd) * radius);
     p.set("u_background", Eigen::Vector3f(bg[0], bg[1], bg[2]));
+}
+
+void FrameRenderer::set_camera_uniforms(const GlProgram& p, const Camera& c) const {
+    p.set("u_view_projection", Eigen::Matrix4f(c.projection * c.view));
+    p.set("u_camera", c.position);
 }
 
 void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fading_only) {
@@ -229,7 +236,8 @@ void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fadin
 PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
     const int w = int(settings_.width), h = int(settings_.height);
     const PixelRect screen{0, 0, w, h};
-    const Eigen::Matrix4f view_projection = camera_.projection * camera_.view;
+    const Camera& c = camera(frame);
+    const Eigen::Matrix4f view_projection = c.projection * c.view;
     float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
     for (const Item& item : items_) {
         if (item.fade) continue;
@@ -252,6 +260,9 @@ PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
 void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {
     assert(frame < scene_.trajectory->frames());
     auto start = std::chrono::steady_clock::now();
+    if (camera_moves())
+        for (const GlProgram& p : scene_programs_)
+            if (p.id()) p.use(), set_camera_uniforms(p, camera(frame));
     if (shadow_map_) shadow_pass(frame);
     const int w = int(settings_.width), h = int(settings_.height);
     const PixelRect screen{0, 0, w, h};

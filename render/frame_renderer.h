@@ -1,7 +1,8 @@
 // Draws one frame of a trajectory into an sRGB RGBA8 buffer. Built once per render (the meshes go to
-// GL once; the camera, lights and shadow frustum are fixed from the animation's bounds), then
-// called per frame. Each frame depends only on its own poses: no state carries from one frame
-// to the next, so frame f is the same bytes whichever range rendered it.
+// GL once; the lights and shadow frustum are fixed from the animation's bounds, the camera path
+// from the whole trajectory: render/camera_path.h), then called per frame. Each frame depends
+// only on its own poses and its camera: no state carries from one frame to the next, so frame f
+// is the same bytes whichever range rendered it.
 //
 // Per frame: shadow pass (depth from the key light, front faces culled, polygon offset) ->
 // scene pass (linear light, MSAA, encoded to sRGB8 by GL on write) -> resolve (glBlitFramebuffer:
@@ -47,7 +48,9 @@ public:
     // sRGB-encoded RGBA, GL's bottom row first (see render/srgb_encode.h).
     void render(uint32_t frame, uint8_t* rgba);
     const FrameTimes& last_times() const { return times_; }
-    const Camera& camera() const { return camera_; }
+    // The camera of frame `frame` (the same for every frame when it does not move).
+    const Camera& camera(uint32_t frame = 0) const { return cameras_[cameras_.size() > 1 ? frame : 0]; }
+    bool camera_moves() const { return cameras_.size() > 1; }
     const Lights& lights() const { return lights_; }
 
 private:
@@ -73,12 +76,13 @@ private:
     }
     void add_ground(const Vec3& origin, double extent);
     void set_scene_uniforms(const GlProgram& p) const;
+    void set_camera_uniforms(const GlProgram& p, const Camera& c) const;
 
     const RenderScene& scene_;
     RenderSettings settings_;
     MsaaRegion region_;
     Eigen::AlignedBox3d bounds_;
-    Camera camera_;
+    std::vector<Camera> cameras_;  // one per frame, or one for all
     Lights lights_;
     std::vector<Item> items_;
     RenderTarget target_;

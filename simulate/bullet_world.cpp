@@ -544,6 +544,9 @@ BodyPose BulletWorld::prop_pose(uint32_t i) const {
 }
 
 Vec3 BulletWorld::piece_velocity(uint32_t i) const { return to_eigen(impl_->pieces[i].body->getLinearVelocity()); }
+Vec3 BulletWorld::piece_angular_velocity(uint32_t i) const {
+    return to_eigen(impl_->pieces[i].body->getAngularVelocity());
+}
 Vec3 BulletWorld::piece_position(uint32_t i) const {
     return to_eigen(impl_->pieces[i].body->getCenterOfMassPosition());
 }

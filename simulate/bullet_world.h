@@ -93,6 +93,7 @@ public:
     BodyPose piece_pose(uint32_t piece) const;
     BodyPose prop_pose(uint32_t prop) const;
     Vec3 piece_velocity(uint32_t piece) const;
+    Vec3 piece_angular_velocity(uint32_t piece) const;  // (unit: rad/s)
     Vec3 piece_position(uint32_t piece) const;  // centre of mass, world (unit: m)
     uint32_t pieces() const;
     uint32_t props() const;

@@ -1,5 +1,6 @@
 #include "simulate/simulate.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -170,7 +171,9 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
 
 }  // namespace
 
-uint32_t frame_count(const SimulateSettings& s) { return uint32_t(std::llround(s.duration * s.fps)) + 1; }
+uint32_t frame_count(const SimulateSettings& s) {
+    return uint32_t(std::llround((s.auto_duration ? s.max_duration : s.duration) * s.fps)) + 1;
+}
 
 SimulationResult simulate(const Model& model, const SimulationInput& shot_input, const std::string& model_id) {
     const double h = 1.0 / (shot_input.simulate.fps * shot_input.simulate.substeps);
@@ -208,6 +211,20 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     out.energy.push_back(run.books());
 
     const uint32_t frames = frame_count(in.simulate);
+    // duration = "auto": the fastest point of each piece (|v| + |w| r) against kRestSpeed.
+    std::vector<double> radius(world.pieces(), 0.0);
+    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i)
+        for (const Vec3& v : model.pieces[i].surface.vertices)
+            radius[i] = std::max(radius[i], (v - model.pieces[i].mass.center).norm());
+    auto at_rest = [&] {
+        for (uint32_t i = 0; i < world.pieces(); ++i)
+            if (world.piece_dynamic(i) &&
+                !(world.piece_velocity(i).norm() + world.piece_angular_velocity(i).norm() * radius[i] < kRestSpeed))
+                return false;
+        return true;
+    };
+    const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
+    uint32_t still = 0;  // frames in a row at rest
     Progress progress("simulate", frames - 1);
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
         for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
@@ -219,6 +236,13 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         record(world, t);
         out.energy.push_back(run.books());
         progress.advance();
+        if (in.simulate.auto_duration) {
+            still = at_rest() ? still + 1 : 0;
+            if (still >= hold_frames) {
+                out.rest_time = (f - still) / in.simulate.fps;
+                break;
+            }
+        }
     }
     t.complete = out.complete;
     return out;

@@ -66,6 +66,9 @@ struct SimulationResult {
     std::vector<BreakRecord> breaks;
     std::vector<EnergySample> energy;
     uint64_t steps = 0;
+    // duration = "auto": when the last piece came to rest (the movie ends kRestHold later);
+    // negative when the simulation reached max_duration first, or without "auto" (unit: s).
+    double rest_time = -1;
     double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
@@ -92,7 +95,15 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
     return count_fragments(model, broken);
 }
 
-// Where the frames go: frame count for duration and fps (frame 0 at t = 0 included).
+// Where the frames go: frame count for duration and fps (frame 0 at t = 0 included). With
+// duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);
+
+// duration = "auto": a piece is at rest when no point of it moves faster than kRestSpeed
+// (|v| + |w| r, r its radius about its centre of mass); the simulation ends once every dynamic
+// piece has been at rest for kRestHold, checked at frame boundaries (deterministic), or at
+// max_duration.
+inline constexpr double kRestSpeed = 0.02;  // (unit: m/s)
+inline constexpr double kRestHold = 0.5;    // (unit: s)
 
 }  // namespace shatter

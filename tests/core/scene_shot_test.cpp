@@ -465,5 +465,33 @@ TEST(SceneShot, DrivenPieceWithTwoMotionsOrAnUnknownKeyIsRefused) {
     expect_error("[object]\n[[object.driven]]\npeice = 1\n", {":3", "object.driven[0].peice", "did you mean 'piece'"});
 }
 
+TEST(SceneShot, DurationAutoRunsUntilRestWithACap) {
+    TempDir dir;
+    const Shot a = load_shot(dir.write("a.toml", "[simulate]\nduration = \"auto\"\nmax_duration = 7.5\n"));
+    EXPECT_TRUE(a.simulate.auto_duration);
+    EXPECT_DOUBLE_EQ(a.simulate.max_duration, 7.5);
+    EXPECT_EQ(to_json(a.simulate)["duration"], "auto");
+    EXPECT_EQ(to_json(a.simulate)["max_duration"], 7.5);
+    // Seconds are kept as before, and the JSON has no trace of "auto" (trajectories keep their bytes).
+    const Shot b = load_shot(dir.write("b.toml", "[simulate]\nduration = 2\n"));
+    EXPECT_FALSE(b.simulate.auto_duration);
+    EXPECT_FALSE(to_json(b.simulate).contains("max_duration"));
+    // An override's seconds replace the shot's "auto".
+    EXPECT_FALSE(load_shot(dir.file("a.toml"), {"simulate.duration=0.2"}).simulate.auto_duration);
+    expect_error("[simulate]\nduration = \"long\"\n", {"s.toml:2", "simulate.duration", "\"auto\""});
+    expect_error("[simulate]\nduration = \"auto\"\nmax_duration = 0\n", {"s.toml:3", "max_duration"});
+}
+
+TEST(SceneShot, RenderCameraModeIsReadAndOnlyInTheJsonWithoutAPosition) {
+    TempDir dir;
+    const Shot a = load_shot(dir.write("a.toml", "[render]\ncamera = \"whole\"\n"));
+    EXPECT_EQ(a.render.camera, CameraMode::Whole);
+    EXPECT_EQ(to_json(a.render)["camera"], "whole");
+    EXPECT_EQ(load_shot(dir.write("b.toml", "[render]\nfov = 30\n")).render.camera, CameraMode::Follow);
+    const Shot c = load_shot(dir.write("c.toml", "[render]\ncamera_position = [1, 1, 1]\n"));
+    EXPECT_FALSE(to_json(c.render).contains("camera"));
+    expect_error("[render]\ncamera = \"orbit\"\n", {"s.toml:2", "not a camera mode", "follow"});
+}
+
 }  // namespace
 }  // namespace shatter

@@ -1,0 +1,82 @@
+// duration = "auto" (simulate/simulate.h): the simulation ends kRestHold after the last piece
+// comes to rest, at most max_duration, deterministically.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/trajectory.h"
+#include "scenes/box_model.h"
+#include "simulate/simulate.h"
+
+namespace shatter {
+namespace {
+
+// A 4 x 1 x 4 plate of 5 cm boxes dropped tilted from 0.3 m on the ground: it lands after
+// sqrt(2 x 0.3 / 9.81) = 0.25 s, breaks, and its pieces settle.
+SimulationInput dropped_plate() {
+    SimulationInput in;
+    in.object.pose.position = Vec3(0, 0.3, 0);
+    in.object.pose.rotation_deg = Vec3(20, 0, 10);
+    in.material.stiffness = 1e9;
+    in.material.strength = 2e4;
+    in.material.alpha = 1;
+    in.simulate.auto_duration = true;
+    in.simulate.max_duration = 6;
+    return in;
+}
+
+Model plate() { return box_grid(4, 1, 4, 0.05, Vec3(-0.1, 0, -0.1), 2400, 2); }
+
+// The fastest point of any piece between frames f - 1 and f, from the recorded poses (unit: m/s).
+double frame_speed(const Model& m, const Trajectory& t, uint32_t f) {
+    double fastest = 0;
+    for (uint32_t i = 0; i < t.pieces; ++i) {
+        double r = 0;
+        for (const Vec3& v : m.pieces[i].surface.vertices) r = std::max(r, (v - m.pieces[i].mass.center).norm());
+        const BodyPose &a = t.pose(f - 1, i), &b = t.pose(f, i);
+        const double angle = 2 * std::acos(std::min(1.0, double(std::abs(a.rotation.dot(b.rotation)))));
+        fastest = std::max(fastest, ((b.position - a.position).norm() + angle * r) * t.fps);
+    }
+    return fastest;
+}
+
+TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
+    const Model m = plate();
+    const SimulationResult r = simulate(m, dropped_plate(), "test");
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    const Trajectory& t = r.trajectory;
+    // It lands at 0.25 s and needs time to settle; it rests well before the 6 s cap.
+    ASSERT_GT(r.rest_time, 0.25);
+    EXPECT_LT(t.frames(), frame_count(dropped_plate().simulate));
+    // The last frame is kRestHold (15 frames at 30 fps) after the last frame with motion.
+    const uint32_t hold = uint32_t(std::lround(kRestHold * t.fps));
+    EXPECT_NEAR((t.frames() - 1) / t.fps, r.rest_time + kRestHold, 1e-9);
+    // Over the hold, the recorded poses barely move: at most kRestSpeed (with margin for the
+    // finite differences) at every point of every piece.
+    for (uint32_t f = t.frames() - hold; f < t.frames(); ++f) EXPECT_LT(frame_speed(m, t, f), 2 * kRestSpeed) << f;
+    // The settings remember "auto" and the cap; the same inputs give the same bytes.
+    EXPECT_NE(t.settings_json.find("\"duration\":\"auto\""), std::string::npos) << t.settings_json;
+    EXPECT_EQ(encode_trajectory(simulate(m, dropped_plate(), "test").trajectory), encode_trajectory(t));
+    std::printf("[ auto     ] rests at %.3f s, ends at %.3f s (%u frames)\n", r.rest_time, (t.frames() - 1) / t.fps,
+                t.frames());
+}
+
+TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
+    SimulationInput in = dropped_plate();
+    in.simulate.max_duration = 0.2;  // still falling at 0.2 s (lands at 0.25 s)
+    const SimulationResult r = simulate(plate(), in, "test");
+    EXPECT_EQ(r.trajectory.frames(), 7u);  // 0.2 s at 30 fps, frame 0 included
+    EXPECT_LT(r.rest_time, 0);
+}
+
+TEST(AutoDuration, WithoutAutoTheDurationIsKept) {
+    SimulationInput in = dropped_plate();
+    in.simulate.auto_duration = false;
+    in.simulate.duration = 0.5;
+    const SimulationResult r = simulate(plate(), in, "test");
+    EXPECT_EQ(r.trajectory.frames(), 16u);
+    EXPECT_EQ(r.trajectory.settings_json.find("auto"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace shatter
