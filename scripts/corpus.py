@@ -15,11 +15,13 @@ mesh and a summary; exits 1 when a mesh failed.
 """
 import argparse
 import concurrent.futures
+import json
 import os
 import re
 import subprocess
 import sys
 import tarfile
+import threading
 import time
 
 LIMIT_SECONDS = 20  # the target for one prescore on this project's 2-core machines (measured, not enforced)
@@ -169,8 +171,29 @@ def main():
         files = list(expected)
     else:
         files = corpus(workdir)
+    # Each result is appended to WORKDIR/results.jsonl as it comes, so that an interrupted --all
+    # run resumes where it stopped (results of another shatter binary are not reused).
+    journal = os.path.join(workdir, "results.jsonl")
+    stamp = "%s %d" % (os.path.realpath(args.shatter), int(os.path.getmtime(args.shatter)))
+    done = {}
+    if args.all and os.path.exists(journal):
+        for line in open(journal):
+            r = json.loads(line)
+            if r.get("shatter") == stamp:
+                done[r["file"]] = r
+    lock = threading.Lock()
+
+    def run(f):
+        if f in done:
+            return done[f]
+        r = prescore(args.shatter, workdir, f)
+        r["shatter"] = stamp
+        with lock, open(journal, "a") as out:
+            out.write(json.dumps(r) + "\n")
+        return r
+
     with concurrent.futures.ThreadPoolExecutor(args.workers) as pool:
-        results = list(pool.map(lambda f: prescore(args.shatter, workdir, f), files))
+        results = list(pool.map(run, files))
     failures = 0
     for r in results:
         v = verdict(r)

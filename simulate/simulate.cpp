@@ -53,23 +53,19 @@ double least_stiffness(const BulletWorld& world, const Model& model, const Simul
 // Refuses constraints whose spring is too soft for its bodies at this step: the solver diverges
 // as CFM nears 1 (simulate/spring.h).
 void check_cfm(const BulletWorld& world, const Model& model, const SimulationInput& in) {
-    for (size_t c = 0; c < world.constraint_count(); ++c) {
-        if (!world.active(c)) continue;
-        double w = 0;
-        const double cfm = world.current_max_cfm(c, &w);
-        if (cfm <= in.simulate.max_cfm) continue;
-        const double area = model.constraints[c].area;
-        const double k_min = min_stiffness_for_cfm(in.material.damping * area, world.h(), w, in.simulate.max_cfm) / area;
-        throw_input_error(
-            "[material] stiffness",
-            fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with stiffness "
-                        "{:.4g} N/m^3; the solver converges only below CFM {:g} (max_cfm)",
-                        c, world.piece_a(c), world.piece_b(c), cfm, world.h(), in.material.stiffness,
-                        in.simulate.max_cfm),
-            fmt::format("raise [material] stiffness to at least {:.3g} N/m^3 (or damping), or use fewer [simulate] "
-                        "substeps: a longer step lowers CFM",
-                        k_min));
-    }
+    size_t c = 0;
+    const double k_min = least_stiffness(world, model, in, &c);
+    if (k_min == 0) return;
+    double w = 0;
+    throw_input_error(
+        "[material] stiffness",
+        fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with stiffness "
+                    "{:.4g} N/m^3; the solver converges only below CFM {:g} (max_cfm)",
+                    c, world.piece_a(c), world.piece_b(c), world.current_max_cfm(c, &w), world.h(),
+                    in.material.stiffness, in.simulate.max_cfm),
+        fmt::format("raise [material] stiffness to at least {:.3g} N/m^3 (or damping), set [material] stiffen = true, "
+                    "or use fewer [simulate] substeps: a longer step lowers CFM",
+                    k_min));
 }
 
 class Run {
