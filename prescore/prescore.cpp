@@ -64,7 +64,8 @@ void refuse_flat(const MeshCheck& c, const std::string& path) {
     const double d = c.diagonal;
     const bool flat = extent.minCoeff() <= 1e-6 * d;
     const bool empty_inside = c.closed() && std::abs(c.volume) <= 1e-9 * d * d * d;
-    if (d > 0 && (flat || empty_inside))
+    const bool no_area = c.area <= 1e-12 * d * d;  // every triangle degenerate (a line's worth of points)
+    if (d > 0 && (flat || empty_inside || no_area))
         throw_input_error(path,
                           fmt::format("the mesh is flat: it encloses no volume (bounding box {:.4g} x {:.4g} x {:.4g} m, "
                                       "volume {:.4g} m^3)", extent.x(), extent.y(), extent.z(), c.volume),

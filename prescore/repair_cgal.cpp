@@ -1,6 +1,6 @@
 // alpha_wrap: the soup goes to CGAL::alpha_wrap_3 (Epick) as points + triangles, and the
 // wrap's Surface_mesh comes back as a TriangleMesh in the Surface_mesh's vertex order.
-// Triangles with a repeated index are left out (they add nothing to the wrapped shape).
+// Triangles with a repeated index or no area are left out (they add nothing to the wrapped shape).
 // CGAL orients the wrap outward; if the volume ever came out negative we flip it
 // (orient_outward), so callers may rely on "outward".
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -57,10 +57,14 @@ TriangleMesh alpha_wrap(const TriangleMesh& soup, double alpha, double offset) {
     std::vector<std::array<size_t, 3>> faces;
     faces.reserve(soup.triangles.size());
     for (const Tri& t : soup.triangles) {
-        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) faces.push_back({t[0], t[1], t[2]});
+        // Triangles with a repeated index or no area add nothing to the wrapped shape, and a
+        // soup of only collinear triangles crashed CGAL's wrapper (assimp's OBJ/number_formats.obj).
+        const Vec3 &a = soup.vertices[t[0]], &b = soup.vertices[t[1]], &c = soup.vertices[t[2]];
+        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && (b - a).cross(c - a).squaredNorm() > 0)
+            faces.push_back({t[0], t[1], t[2]});
     }
     if (faces.empty()) {
-        throw_input_error("alpha wrap input", "the mesh has no triangle with three distinct vertices",
+        throw_input_error("alpha wrap input", "the mesh has no triangle with three distinct vertices and an area",
                           "give a mesh with triangles");
     }
 
