@@ -4,13 +4,15 @@
 //
 //   size        a file without units is made kDefaultSize long ([mesh] size or scale to choose);
 //   resolution  when Mesh_3 loses parts of the surface (the tets fall apart into more clusters
-//               than the surface has components, or fill less than kMinFilled of its volume),
-//               the resolution is raised by kResolutionStep while the tets stay within kTetBudget;
-//   thicken     when the budget cannot reach the thin parts, the input is alpha-wrapped with an
-//               offset of kThickenOffset cells, which gives every wall a thickness of about 1.5
-//               tets (an open sheet becomes a slab, a double-sided wrap of a thin wall one solid);
-//   repair      a surface whose meshing does not end within the vertex budget (heavy
-//               self-intersections) is alpha-wrapped first;
+//               than the surface has components, or fill less than kMinFilled of its volume) but
+//               still fill half of it (thin parts here and there), the resolution is raised by
+//               kResolutionStep, twice at most, while the tets stay within kTetBudget;
+//   thicken     when that does not reach the thin parts (or the tets fill less than half: thin
+//               everywhere), the input is alpha-wrapped with an offset of kThickenOffset tets at
+//               twice the asked resolution, which gives every wall a thickness of about 1.5 tets
+//               (an open sheet becomes a slab, a double-sided wrap of a thin wall one solid);
+//   repair      a surface whose meshing does not end within the vertex budget and kMeshSeconds
+//               (heavy self-intersections) is alpha-wrapped first;
 //   slivers     tet clusters smaller than kSliverFraction of the volume are not pieces of their
 //               own: each joins the piece nearest to it (a piece may then be two clusters that
 //               move as one rigid body);
