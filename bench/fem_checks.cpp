@@ -204,3 +204,97 @@ TumbleResult tumbling_bar(bool corotational, double spin, double turns, int step
 }
 
 }  // namespace shatter::fem
+
+#include "bench/fem_interfaces.h"
+
+namespace shatter::fem {
+
+InterfaceStaticResult scored_cantilever(const CantileverGeometry& g, uint32_t cells, double x_score, double strength) {
+    InterfaceStaticResult r;
+    r.cells = cells;
+    const Cantilever c = make_cantilever(g, cells);
+    std::vector<uint32_t> tet_piece(c.mesh.tets.size());
+    for (size_t t = 0; t < c.mesh.tets.size(); ++t) {
+        Vec3 centre = Vec3::Zero();
+        for (uint32_t v : c.mesh.tets[t]) centre += c.mesh.vertices[v] / 4;
+        tet_piece[t] = centre.x() > x_score ? 1 : 0;
+    }
+    Interfaces in(split_pieces(c.mesh, tet_piece));
+    r.ties = in.split().ties.size();
+    const TetMesh& m = in.split().mesh;
+    FemSettings s;
+    s.material = g.material;
+    s.gravity = Vec3::Zero();
+    FemSolid solid(m, s);
+    const double eps = 1e-9 * g.length;
+    solid.clamp(select_vertices(m, [&](const Vec3& p) { return p.x() < eps; }));
+    const auto tip = select_vertices(m, [&](const Vec3& p) { return p.x() > g.length - eps; });
+    const double F = 100;
+    for (uint32_t v : tip) {
+        const Vec3& p = m.vertices[v];
+        const uint32_t j = uint32_t(std::lround(p.y() / g.side * cells)), k = uint32_t(std::lround(p.z() / g.side * cells));
+        solid.set_load(v, Vec3(0, -F * tributary(j, cells) * tributary(k, cells), 0));
+    }
+    in.apply(solid);
+    solid.solve_static();
+    double tip_y = 0;
+    for (uint32_t v : tip) tip_y += solid.position(v).y() - m.vertices[v].y();
+    r.deflection_split = -tip_y / double(tip.size());
+    r.deflection_whole = cantilever_static(g, cells, F).deflection;
+    for (size_t i = 0; i < in.split().ties.size(); ++i) {
+        double sigma, tau;
+        in.traction(solid, i, sigma, tau);
+        r.max_sigma = std::max(r.max_sigma, sigma);
+    }
+    r.break_load = F * strength / r.max_sigma;
+    const double I = std::pow(g.side, 4) / 12;
+    r.beam_theory = strength * I / (0.5 * g.side * (g.length - x_score));
+    return r;
+}
+
+TensionBreakResult bar_tension_break(uint32_t cells, double v, double h, double strength) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double L = 0.1, b = 0.01;
+    const TetMesh mesh = box_tet_mesh(Vec3(L, b, b), 10 * cells, cells, cells);
+    std::vector<uint32_t> tet_piece(mesh.tets.size());
+    for (size_t t = 0; t < mesh.tets.size(); ++t) {
+        double x = 0;
+        for (uint32_t q : mesh.tets[t]) x += mesh.vertices[q].x() / 4;
+        tet_piece[t] = x > L / 2 ? 1 : 0;
+    }
+    Interfaces in(split_pieces(mesh, tet_piece));
+    const TetMesh& m = in.split().mesh;
+    FemSettings s;
+    s.gravity = Vec3::Zero();
+    FemSolid solid(m, s);
+    const double eps = 1e-9 * L;
+    solid.clamp(select_vertices(m, [&](const Vec3& p) { return p.x() < eps; }));
+    solid.drive(select_vertices(m, [&](const Vec3& p) { return p.x() > L - eps; }), Vec3(v, 0, 0));
+    in.apply(solid);
+    TensionBreakResult r;
+    r.ties = in.split().ties.size();
+    r.predicted = strength * L / (s.material.young * v);
+    const Strength st{strength, 1e300};
+    while (solid.time() < 2 * r.predicted) {
+        solid.step(h);
+        double lo = 1e300, hi = 0, mean = 0;
+        for (size_t i = 0; i < r.ties; ++i) {
+            double sigma, tau;
+            in.traction(solid, i, sigma, tau);
+            lo = std::min(lo, sigma);
+            hi = std::max(hi, sigma);
+            mean += sigma / double(r.ties);
+        }
+        const double spread = (hi - lo) / mean;
+        if (in.break_overloaded(solid, st) > 0 && r.break_time == 0) r.break_time = solid.time();
+        if (r.break_time == 0) r.sigma_spread = spread;
+        if (r.break_time > 0 && solid.time() > r.break_time + 2 * L / std::sqrt(s.material.young / s.material.density))
+            break;  // a wave has crossed the bar twice: the last ties have had their chance
+    }
+    for (const Tie& t : in.split().ties) r.broken += t.broken;
+    r.fragments = in.fragments();
+    r.seconds = since(t0);
+    return r;
+}
+
+}  // namespace shatter::fem

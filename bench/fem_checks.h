@@ -77,3 +77,36 @@ struct TumbleResult {
 TumbleResult tumbling_bar(bool corotational, double spin = 200, double turns = 2, int steps_per_turn = 400);
 
 }  // namespace shatter::fem
+
+namespace shatter::fem {
+
+// ---- interfaces (bench/fem_interfaces.h) ----
+
+struct InterfaceStaticResult {
+    uint32_t cells = 0;
+    size_t ties = 0;
+    double deflection_split = 0, deflection_whole = 0;  // tip deflection with and without the score (unit: m)
+    double max_sigma = 0;       // largest tie tension under the tip load (unit: Pa)
+    double break_load = 0;      // tip load at which the first tie reaches the strength (unit: N)
+    double beam_theory = 0;     // strength I / ((b / 2) (L - x_score)) (unit: N)
+};
+// The cantilever of cantilever_static scored across at x_score (two pieces; x_score on a cell
+// boundary), 100 N at the tip. Beam theory: the outer fibre at the score reaches the strength at
+// F = strength I / ((b / 2) (L - x_score)).
+InterfaceStaticResult scored_cantilever(const CantileverGeometry& g, uint32_t cells, double x_score,
+                                        double strength = 40e6);
+
+struct TensionBreakResult {
+    double break_time = 0;       // first tie break (unit: s)
+    double predicted = 0;        // strength L / (E v) (unit: s)
+    size_t ties = 0, broken = 0;
+    size_t fragments = 0;
+    double sigma_spread = 0;     // (max - min) / mean tie tension one step before the break
+    double seconds = 0;
+};
+// A 0.1 x 0.01 x 0.01 m glass bar (cells x cells x 10 cells) scored at mid-length, clamped at x = 0,
+// its far end pulled at v (unit: m/s); midpoint steps of h, until a wave has crossed the bar twice
+// after the first break. The stress is uniform: every tie should break within that time.
+TensionBreakResult bar_tension_break(uint32_t cells, double v = 0.01, double h = 1e-5, double strength = 40e6);
+
+}  // namespace shatter::fem

@@ -74,5 +74,27 @@ int main(int argc, char** argv) {
                         t.max_elastic, t.initial_energy, t.max_newton);
             std::fflush(stdout);
         }
+
+    std::printf("\ncantilever scored at x = 0.15 m (two pieces), 100 N at the tip, tensile strength 40 MPa:\n");
+    std::printf("| cells across | ties | deflection scored / whole - 1 | largest tie tension (MPa) | break load (N) | beam theory (N) | ratio |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+    for (uint32_t n : {2u, 4u, 6u, 8u}) {
+        if (n > max_cells) break;
+        const InterfaceStaticResult r = scored_cantilever(g, n, 0.15);
+        std::printf("| %u | %zu | %.1e | %.3f | %.1f | %.1f | %.4f |\n", n, r.ties,
+                    r.deflection_split / r.deflection_whole - 1, 1e-6 * r.max_sigma, r.break_load, r.beam_theory,
+                    r.break_load / r.beam_theory);
+        std::fflush(stdout);
+    }
+
+    std::printf("\nbar 0.1 x 0.01 x 0.01 m scored at mid-length, clamped, far end pulled at 1 cm/s, h = 10 us:\n");
+    std::printf("| cells across | ties | first break (ms) | strength L / (E v) (ms) | ratio | broken | fragments | tension spread before | s |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    for (uint32_t n : {1u, 2u, 4u}) {
+        const TensionBreakResult r = bar_tension_break(n);
+        std::printf("| %u | %zu | %.4f | %.4f | %.4f | %zu | %zu | %.2e | %.1f |\n", n, r.ties, 1e3 * r.break_time,
+                    1e3 * r.predicted, r.break_time / r.predicted, r.broken, r.fragments, r.sigma_spread, r.seconds);
+        std::fflush(stdout);
+    }
     return 0;
 }

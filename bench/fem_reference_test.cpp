@@ -92,3 +92,27 @@ TEST(FemReference, TumblingConservesEnergy) {
     EXPECT_GT(coarse.energy_drift, 4 * fine.energy_drift);
     EXPECT_LT(fine.energy_drift, 1e-3);
 }
+
+// ---- interfaces (bench/fem_interfaces.h) ----
+
+// While its ties hold, a scored solid is the whole solid (its copies share their vertex), and
+// the ties carry the section's stress: the outer fibre reaches the strength near the load beam
+// theory gives.
+TEST(FemReference, ScoredCantileverIsWholeAndBreaksAtBeamTheory) {
+    const CantileverGeometry g;
+    const InterfaceStaticResult r = scored_cantilever(g, 4, 0.15);
+    EXPECT_EQ(r.ties, 25u);  // 5 x 5 interface vertices
+    EXPECT_NEAR(r.deflection_split / r.deflection_whole, 1, 1e-9);
+    EXPECT_NEAR(r.beam_theory, 1200, 1e-9);
+    EXPECT_NEAR(r.break_load / r.beam_theory, 1, 0.05);
+    EXPECT_NEAR(r.break_load / r.beam_theory, 0.9698, 1e-3);  // the measured value (docs/accuracy.md)
+}
+
+// Pulled slowly, a bar's uniform stress reaches the strength at t = strength L / (E v), and every
+// tie of the score lets go: two fragments.
+TEST(FemReference, BarBreaksInTensionAtItsStrength) {
+    const TensionBreakResult r = bar_tension_break(2);
+    EXPECT_NEAR(r.break_time / r.predicted, 1, 0.01);
+    EXPECT_EQ(r.broken, r.ties);
+    EXPECT_EQ(r.fragments, 2u);
+}

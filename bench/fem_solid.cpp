@@ -90,6 +90,14 @@ FemSolid::FemSolid(const TetMesh& mesh, const FemSettings& settings) : s_(settin
     }
     constrained_.assign(n, false);
     drive_velocity_.assign(n, Vec3::Zero());
+    group_.resize(n);
+    for (size_t v = 0; v < n; ++v) group_[v] = uint32_t(v);
+    group_force_ = Eigen::VectorXd::Zero(3 * n);
+}
+
+void FemSolid::set_vertex_groups(const std::vector<uint32_t>& group) {
+    group_ = group;
+    pattern_ready_ = false;
 }
 
 FemSolid::~FemSolid() = default;
@@ -119,8 +127,11 @@ void FemSolid::prepare_pattern() {
     free_.assign(3 * n, -1);
     n_free_ = 0;
     for (size_t v = 0; v < n; ++v)
-        if (!constrained_[v])
+        if (group_[v] == v && !constrained_[v])
             for (int c = 0; c < 3; ++c) free_[3 * v + c] = int(n_free_++);
+    for (size_t v = 0; v < n; ++v)
+        if (group_[v] != v)
+            for (int c = 0; c < 3; ++c) free_[3 * v + c] = free_[3 * group_[v] + c];
     // The lower triangle of the tangent: every tet's vertex pairs plus the diagonal.
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(tets_.size() * 78 + n_free_);
@@ -230,8 +241,9 @@ int FemSolid::step(double h) {
         xe = midpoint ? Eigen::VectorXd(0.5 * (x0 + x1)) : x1;
         ve = midpoint ? Eigen::VectorXd(0.5 * (v0 + v1)) : v1;
         total_forces(xe, ve, f, diag_k);
+        r.setZero();
         for (size_t c = 0; c < free_.size(); ++c)
-            if (free_[c] >= 0) r[free_[c]] = mass_[c] * (v1[c] - v0[c]) - h * f[c];
+            if (free_[c] >= 0) r[free_[c]] += mass_[c] * (v1[c] - v0[c]) - h * f[c];
         const bool reuse = constant_factored_ && factored_c_ == c_k && !s_.corotational && diag_k.isZero(0);
         if (it == 0 && !reuse) {
             assemble_tangent(c_k);
@@ -269,6 +281,7 @@ int FemSolid::step(double h) {
     x_ = x0 + (midpoint ? 0.5 * h : h) * (midpoint ? Eigen::VectorXd(v0 + v1) : v1);
     v_ = v1;
     time_ += h;
+    group_force_ = mass_.cwiseProduct(v1 - v0) / h - f;
     return it;
 }
 
@@ -280,9 +293,10 @@ int FemSolid::solve_static() {
         total_forces(x_, v_, f, diag_k);
         assemble_tangent(1.0);
         double* val = tangent_.valuePtr();
+        rhs.setZero();
         for (size_t c = 0; c < free_.size(); ++c)
             if (free_[c] >= 0) {
-                rhs[free_[c]] = f[c];
+                rhs[free_[c]] += f[c];
                 val[diag_slot_[free_[c]]] += diag_k[c];
             }
         if (s_.solver != FemLinearSolver::LDLT) ldlt_->analyzePattern(tangent_);
@@ -300,6 +314,8 @@ int FemSolid::solve_static() {
     }
     v_.setZero();
     for (size_t v = 0; v < vertex_count(); ++v) v_.segment<3>(3 * v) = drive_velocity_[v];
+    total_forces(x_, v_, f, diag_k);
+    group_force_ = -f;
     return it;
 }
 
@@ -342,9 +358,9 @@ Eigen::SparseMatrix<double> FemSolid::free_stiffness() {
 }
 
 Eigen::VectorXd FemSolid::free_mass() const {
-    Eigen::VectorXd m(n_free_);
+    Eigen::VectorXd m = Eigen::VectorXd::Zero(n_free_);
     for (size_t c = 0; c < free_.size(); ++c)
-        if (free_[c] >= 0) m[free_[c]] = mass_[c];
+        if (free_[c] >= 0) m[free_[c]] += mass_[c];
     return m;
 }
 

@@ -75,6 +75,14 @@ public:
     void drive(const std::vector<uint32_t>& vertices, const Vec3& velocity);  // moved at constant velocity
     void set_load(uint32_t vertex, const Vec3& force);                        // constant (unit: N)
     void set_extra_force(ExtraForce f) { extra_ = std::move(f); }
+    // Vertices that move as one: vertex v shares the degrees of freedom of group[v] (group[v] ==
+    // v for a vertex of its own). The pieces' copies of an interface vertex are joined so until
+    // their interface breaks (bench/fem_interfaces.h). Copies must be at the same place.
+    void set_vertex_groups(const std::vector<uint32_t>& group);
+    // The force the rest of its group exerted on each vertex over the last step (unit: N):
+    // m (v1 - v0) / h minus the vertex's own tets', gravity's, loads' and extra forces. Zero for
+    // a vertex of its own, up to the Newton tolerance.
+    const Eigen::VectorXd& group_forces() const { return group_force_; }
 
     // One step of length h (unit: s). Returns the Newton iterations it took.
     int step(double h);
@@ -125,6 +133,8 @@ private:
     std::vector<int> free_;               // per coordinate: index among the free ones, -1 if constrained
     std::vector<Vec3> drive_velocity_;    // per vertex (zero for clamped and free)
     std::vector<bool> constrained_;       // per vertex
+    std::vector<uint32_t> group_;         // per vertex: the vertex whose degrees of freedom it shares
+    Eigen::VectorXd group_force_;
     size_t n_free_ = 0;
     bool pattern_ready_ = false;
     Eigen::SparseMatrix<double> tangent_;
