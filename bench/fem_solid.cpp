@@ -202,12 +202,13 @@ void FemSolid::elastic_forces(const Eigen::VectorXd& x, Eigen::VectorXd& f) {
 }
 
 void FemSolid::total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f,
-                            Eigen::VectorXd& diag_k) {
+                            Eigen::VectorXd& diag_k, Eigen::VectorXd& diag_c) {
     f = loads_;
     for (size_t i = 0; i < vertex_count(); ++i) f.segment<3>(3 * i) += mass_.segment<3>(3 * i).cwiseProduct(s_.gravity);
     diag_k.setZero(f.size());
+    diag_c.setZero(f.size());
     elastic_forces(x, f);
-    if (extra_) extra_(x, v, f, diag_k);
+    if (extra_) extra_(x, v, f, diag_k, diag_c);
 }
 
 void FemSolid::assemble_tangent(double c_k) {
@@ -233,23 +234,29 @@ int FemSolid::step(double h) {
     const bool midpoint = s_.integrator == FemIntegrator::Midpoint;
     const double c_k = midpoint ? h * h / 4 : h * h;
     const Eigen::VectorXd x0 = x_, v0 = v_;
-    Eigen::VectorXd v1 = v0, x1(x0.size()), xe(x0.size()), ve(x0.size()), f, diag_k;
+    Eigen::VectorXd v1 = v0, x1(x0.size()), xe(x0.size()), ve(x0.size()), f, diag_k, diag_c;
+    const double c_c = midpoint ? h / 2 : h;
     Eigen::VectorXd r(n_free_), dv(n_free_);
     int it = 0;
     for (; it < s_.max_newton; ++it) {
         x1 = x0 + (midpoint ? 0.5 * h : h) * (midpoint ? Eigen::VectorXd(v0 + v1) : v1);
         xe = midpoint ? Eigen::VectorXd(0.5 * (x0 + x1)) : x1;
         ve = midpoint ? Eigen::VectorXd(0.5 * (v0 + v1)) : v1;
-        total_forces(xe, ve, f, diag_k);
+        total_forces(xe, ve, f, diag_k, diag_c);
         r.setZero();
         for (size_t c = 0; c < free_.size(); ++c)
             if (free_[c] >= 0) r[free_[c]] += mass_[c] * (v1[c] - v0[c]) - h * f[c];
         const bool reuse = constant_factored_ && factored_c_ == c_k && !s_.corotational && diag_k.isZero(0);
-        if (it == 0 && !reuse) {
+        // Modified Newton: the tangent of the first iterate, refreshed when the extra force's
+        // stiffness changed (a contact began or ended), else Newton diverges on a stiff contact.
+        const bool contacts_changed = it > 0 && diag_k != factored_diag_k_;
+        if ((it == 0 && !reuse) || contacts_changed) {
+            if (it > 0) update_rotations(xe);
+            factored_diag_k_ = diag_k;
             assemble_tangent(c_k);
             double* val = tangent_.valuePtr();
             for (size_t c = 0; c < free_.size(); ++c)
-                if (free_[c] >= 0) val[diag_slot_[free_[c]]] += mass_[c] + c_k * diag_k[c];
+                if (free_[c] >= 0) val[diag_slot_[free_[c]]] += mass_[c] + c_k * diag_k[c] + c_c * diag_c[c];
             if (s_.solver == FemLinearSolver::LDLT) {
                 ldlt_->factorize(tangent_);
                 if (ldlt_->info() != Eigen::Success)
@@ -273,7 +280,7 @@ int FemSolid::step(double h) {
                 dmax = std::max(dmax, std::abs(dv[free_[c]]));
                 vmax = std::max(vmax, std::abs(v1[c]));
             }
-        if (dmax <= s_.newton_tol * (vmax + 1e-6)) {
+        if (dmax <= s_.newton_tol * (vmax + 1e-3)) {
             ++it;
             break;
         }
@@ -287,10 +294,10 @@ int FemSolid::step(double h) {
 
 int FemSolid::solve_static() {
     if (!pattern_ready_) prepare_pattern();
-    Eigen::VectorXd f, diag_k, rhs(n_free_);
+    Eigen::VectorXd f, diag_k, diag_c, rhs(n_free_);
     int it = 0;
     for (; it < s_.max_newton; ++it) {
-        total_forces(x_, v_, f, diag_k);
+        total_forces(x_, v_, f, diag_k, diag_c);
         assemble_tangent(1.0);
         double* val = tangent_.valuePtr();
         rhs.setZero();
@@ -314,7 +321,7 @@ int FemSolid::solve_static() {
     }
     v_.setZero();
     for (size_t v = 0; v < vertex_count(); ++v) v_.segment<3>(3 * v) = drive_velocity_[v];
-    total_forces(x_, v_, f, diag_k);
+    total_forces(x_, v_, f, diag_k, diag_c);
     group_force_ = -f;
     return it;
 }

@@ -20,7 +20,8 @@
 //   SimplicialLDLT. Without corotation the tangent is exact and constant: it is factored once.
 // - Boundary conditions: clamped vertices (fixed where they are) and driven vertices (constant
 //   velocity); gravity; constant vertex loads; and an optional extra force (contact, in its own
-//   file) with a diagonal stiffness for the tangent.
+//   file) with a diagonal stiffness and damping for the tangent (refreshed within a step when
+//   the stiffness changes, i.e. a contact begins or ends).
 // Units: SI (m, kg, s, N, J, Pa).
 #pragma once
 
@@ -57,13 +58,14 @@ struct FemSettings {
     FemLinearSolver solver = FemLinearSolver::LDLT;
     double cg_tol = 1e-10;      // CG's relative residual
     int max_newton = 20;        // Newton iterations per step at most
-    double newton_tol = 1e-10;  // stop when max |dv| <= newton_tol x (max |v| + 1e-6 m/s)
+    double newton_tol = 1e-10;  // stop when max |dv| <= newton_tol x (max |v| + 1e-3 m/s)
 };
 
 // An extra force evaluated at positions x and velocities v (3 per vertex): adds to f and, for the
-// step's tangent, to diag_k (the force's stiffness -df_i/dx_i, per coordinate, >= 0).
+// step's tangent, to diag_k (its stiffness -df_i/dx_i, per coordinate, >= 0) and diag_c (its
+// damping -df_i/dv_i, >= 0).
 using ExtraForce = std::function<void(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f,
-                                      Eigen::VectorXd& diag_k)>;
+                                      Eigen::VectorXd& diag_k, Eigen::VectorXd& diag_c)>;
 
 class FemSolid {
 public:
@@ -91,11 +93,14 @@ public:
     int solve_static();
 
     double time() const { return time_; }
+    void set_time(double t) { time_ = t; }
     long cg_iterations() const { return cg_iterations_; }  // total over all steps
     size_t vertex_count() const { return rest_.size() / 3; }
     size_t free_dofs() const { return n_free_; }
     Eigen::VectorXd& positions() { return x_; }  // 3 per vertex (unit: m)
     Eigen::VectorXd& velocities() { return v_; }  // (unit: m/s)
+    const Eigen::VectorXd& positions_const() const { return x_; }
+    const Eigen::VectorXd& velocities_const() const { return v_; }
     const Eigen::VectorXd& rest() const { return rest_; }
     const Eigen::VectorXd& lumped_mass() const { return mass_; }  // per coordinate (unit: kg)
     Vec3 position(uint32_t v) const { return x_.segment<3>(3 * v); }
@@ -120,7 +125,8 @@ private:
     void prepare_pattern();
     void update_rotations(const Eigen::VectorXd& x);
     void assemble_tangent(double c_k);  // c_k R K_e R^T into tangent_'s lower triangle
-    void total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f, Eigen::VectorXd& diag_k);
+    void total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f, Eigen::VectorXd& diag_k,
+                      Eigen::VectorXd& diag_c);
 
     FemSettings s_;
     std::vector<Tet> tets_;
@@ -145,6 +151,7 @@ private:
     long cg_iterations_ = 0;
     bool constant_factored_ = false;
     double factored_c_ = -1;
+    Eigen::VectorXd factored_diag_k_;
     ExtraForce extra_;
     double time_ = 0;
 };
