@@ -3,7 +3,9 @@
 // of time: the study's kinematic block) and spheres. A vertex inside an obstacle is pushed out
 // along the nearest face's normal (a sphere: radially) with force k d + c (-v_n), c = 2 zeta
 // sqrt(k m) for the vertex's lumped mass m, never pulling; friction is Coulomb's, regularized
-// below a sliding speed v_eps: f_t = -mu f_n v_t / max(|v_t|, v_eps). Only vertices are tested:
+// below a sliding speed v_eps: f_t = -mu f_n v_t / max(|v_t|, v_eps), with f_n held at its value
+// at the step's first evaluation (a vertex entering contact within a step has no friction until
+// the next). Only vertices are tested:
 // an obstacle's edge or corner can enter the solid's faces unseen. The normal stiffness goes to
 // the step's tangent (FemSolid's ExtraForce); friction and damping do not. The penalty method
 // of e.g. Wriggers, "Computational Contact Mechanics", ch. 2, in its most basic form.

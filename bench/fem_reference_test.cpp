@@ -9,6 +9,7 @@
 
 #include "bench/fem_box_mesh.h"
 #include "bench/fem_checks.h"
+#include "bench/fem_contact.h"
 
 using namespace shatter;
 using namespace shatter::fem;
@@ -115,4 +116,39 @@ TEST(FemReference, BarBreaksInTensionAtItsStrength) {
     EXPECT_NEAR(r.break_time / r.predicted, 1, 0.01);
     EXPECT_EQ(r.broken, r.ties);
     EXPECT_EQ(r.fragments, 2u);
+}
+
+// ---- contact (bench/fem_contact.h) ----
+
+// A block resting on the ground is held by contact forces that sum to its weight; slid at v0 it
+// stops after v0^2 / (2 mu g) in v0 / (mu g), Coulomb's law.
+TEST(FemReference, ContactHoldsTheWeightAndFrictionStopsASlide) {
+    const TetMesh mesh = box_tet_mesh(Vec3(0.03, 0.03, 0.03), 2, 2, 2);
+    FemSettings s;
+    s.integrator = FemIntegrator::BackwardEuler;
+    FemSolid solid(mesh, s);
+    ContactSettings cs;
+    cs.ground_friction = 0.3;
+    double t_eval = 0;
+    solid.set_extra_force(contact_force(cs, solid.lumped_mass(), &t_eval));
+    const double h = 1e-3, v0 = 0.5, mu_g = 0.3 * 9.81;
+    for (size_t v = 0; v < solid.vertex_count(); ++v) solid.velocities()[3 * v] = v0;
+    double stop_time = -1, x_start = 0;
+    for (size_t v = 0; v < solid.vertex_count(); ++v) x_start += solid.position(v).x() / double(solid.vertex_count());
+    while (solid.time() < 0.4) {
+        t_eval = solid.time() + h;
+        solid.step(h);
+        double vx = 0;
+        for (size_t v = 0; v < solid.vertex_count(); ++v) vx += solid.velocity(v).x() / double(solid.vertex_count());
+        if (stop_time < 0 && vx < 0.01 * v0) stop_time = solid.time();
+    }
+    double x_end = 0, support = 0, mass = 0;
+    for (size_t v = 0; v < solid.vertex_count(); ++v) {
+        x_end += solid.position(v).x() / double(solid.vertex_count());
+        support += cs.stiffness * std::max(0.0, -solid.position(v).y());
+        mass += solid.lumped_mass()[3 * v];
+    }
+    EXPECT_NEAR(support / (mass * 9.81), 1, 1e-3);
+    EXPECT_NEAR(stop_time, v0 / mu_g, 0.03 * v0 / mu_g);
+    EXPECT_NEAR(x_end - x_start, v0 * v0 / (2 * mu_g), 0.03 * v0 * v0 / (2 * mu_g));
 }
