@@ -73,7 +73,7 @@ void refuse_flat(const MeshCheck& c, const std::string& path) {
 }
 
 // Self-intersecting pairs a mesh may have and still go to Mesh_3 as it is: 1% of its triangles.
-size_t kMaxSelfIntersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
+size_t max_self_intersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
 
 // The mesh Mesh_3 will see: the input when it can be tetrahedralized as it is, else its alpha
 // wrap when the repair mode allows.
@@ -86,12 +86,12 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     std::string why;
     bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
     if (usable && settings.repair != RepairMode::Never &&
-        report.input.self_intersections > kMaxSelfIntersections(report.input)) {
+        report.input.self_intersections > max_self_intersections(report.input)) {
         // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many
         // make Mesh_3 refine around the crossings without end.
         usable = false;
         why = fmt::format("{} self-intersecting triangle pairs (more than {})", report.input.self_intersections,
-                          kMaxSelfIntersections(report.input));
+                          max_self_intersections(report.input));
     }
     if (settings.repair == RepairMode::Never && !usable)
         throw_input_error(settings.path, "the mesh cannot be tetrahedralized as it is: " + why,
