@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 using testing_support::run_shatter;
 using testing_support::slurp;
 using testing_support::TempDir;
+using testing_support::kCubeSweepBatch;
 
 // A PNG's width and height from its IHDR chunk (bytes 16 to 23, big-endian).
 std::optional<std::pair<uint32_t, uint32_t>> read_png_size(const std::string& path) {
@@ -37,18 +38,7 @@ size_t count(const std::string& text, const std::string& what) {
 TEST(BatchCommand, SweepSharesOnePrescoreIsolatesABadJobAndMakesTheStripPlotAndTable) {
     TempDir dir;
     testing_support::write_cube_shot(dir);
-    const std::string batch = dir.write("sweep.toml", R"([batch]
-workers = 2
-
-[[job]]
-shot = "cube.toml"
-sweep = { "material.alpha" = [0, 2] }
-
-[[job]]
-name = "bad"
-shot = "cube.toml"
-set = { "render.width" = 100000 }
-)");
+    const std::string batch = dir.write("sweep.toml", kCubeSweepBatch);
     const std::string out = dir.file("out");
     auto r = run_shatter({"batch", batch, "-o", out});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // one job failed

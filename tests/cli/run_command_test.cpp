@@ -23,6 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing_support::run_shatter;
+using testing_support::stage_status;
 using testing_support::slurp;
 using testing_support::TempDir;
 using testing_support::kCubeShot;
@@ -43,17 +44,6 @@ std::map<std::string, std::string> folder_bytes(const std::string& dir) {
         out[rel] = slurp(e.path().string());
     }
     return out;
-}
-
-// What the closing summary's "stages:" line says of one stage: "render 0.31s" when it ran,
-// "render 0.00s (up to date)" when it was skipped.
-std::string stage_status(const std::string& out, const std::string& stage) {
-    const size_t line = out.find("stages:");
-    if (line == std::string::npos) return "";
-    const size_t at = out.find(" " + stage + " ", line);
-    if (at == std::string::npos) return "";
-    const size_t end = std::min(out.find(',', at), out.find(" (total", at));
-    return out.substr(at + 1, end - at - 1);
 }
 
 TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {

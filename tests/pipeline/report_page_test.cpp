@@ -109,16 +109,6 @@ void expect_values_match(const json& shown, const json& source, const std::strin
     }
 }
 
-// What the closing summary's "stages:" line says of one stage: "report 0.01s (up to date)".
-std::string stage_status(const std::string& out, const std::string& stage) {
-    const size_t line = out.find("stages:");
-    if (line == std::string::npos) return "";
-    const size_t at = out.find(" " + stage + " ", line);
-    if (at == std::string::npos) return "";
-    const size_t end = std::min(out.find(',', at), out.find(" (total", at));
-    return out.substr(at + 1, end - at - 1);
-}
-
 bool up_to_date(const std::string& out, const std::string& stage) {
     return stage_status(out, stage).find("(up to date)") != std::string::npos;
 }
@@ -228,18 +218,7 @@ TEST(BatchPage, IndexShowsEveryRunWithItsSummaryNumbersAndEachSweep) {
     SKIP_WITHOUT_BROWSER();
     TempDir dir;
     write_cube_shot(dir);
-    const std::string batch = dir.write("sweep.toml", R"([batch]
-workers = 2
-
-[[job]]
-shot = "cube.toml"
-sweep = { "material.alpha" = [0, 2] }
-
-[[job]]
-name = "bad"
-shot = "cube.toml"
-set = { "render.width" = 100000 }
-)");
+    const std::string batch = dir.write("sweep.toml", kCubeSweepBatch);
     const std::string out = dir.file("out");
     const auto r = run_shatter({"batch", batch, "-o", out});
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // the bad job

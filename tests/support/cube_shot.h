@@ -35,4 +35,19 @@ inline std::string write_cube_shot(const TempDir& dir) {
     return dir.write("cube.toml", kCubeShot);
 }
 
+// A batch file beside the cube shot: an alpha sweep of two runs, and a job that fails (an image
+// 100,000 pixels wide), for the batch tests.
+inline const char* kCubeSweepBatch = R"([batch]
+workers = 2
+
+[[job]]
+shot = "cube.toml"
+sweep = { "material.alpha" = [0, 2] }
+
+[[job]]
+name = "bad"
+shot = "cube.toml"
+set = { "render.width" = 100000 }
+)";
+
 }  // namespace shatter::testing_support

@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,17 @@ inline CommandResult run_command(const std::vector<std::string>& args, const std
 inline CommandResult run_shatter(std::vector<std::string> args, const std::string& cwd = "") {
     args.insert(args.begin(), SHATTER_BINARY);
     return run_command(args, cwd);
+}
+
+// What the closing summary's "stages:" line of `shatter run` says of one stage: "render 0.31s"
+// when it ran, "render 0.00s (up to date)" when it was skipped; "" when the line has no such stage.
+inline std::string stage_status(const std::string& out, const std::string& stage) {
+    const size_t line = out.find("stages:");
+    if (line == std::string::npos) return "";
+    const size_t at = out.find(" " + stage + " ", line);
+    if (at == std::string::npos) return "";
+    const size_t end = std::min(out.find(',', at), out.find(" (total", at));
+    return out.substr(at + 1, end - at - 1);
 }
 
 }  // namespace shatter::testing_support
