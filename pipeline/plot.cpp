@@ -54,7 +54,9 @@ if len(curves) == 1:
     p0 = c["potential"][0]
     ax.plot(c["t"], c["kinetic"], color="C0", label="kinetic")
     ax.plot(c["t"], [p - p0 for p in c["potential"]], color="C1", label="potential (relative to t = 0)")
-    ax.plot(c["t"], c["stored"], color="C2", label="stored (constraints)")
+    ax.plot(c["t"], c["stored"], color="C2", label="stored (constraints' forces)")
+    if c["elastic"]:
+        ax.plot(c["t"], c["elastic"], color="C2", linestyle=":", label="elastic (constraints' stretch)")
     ax.plot(c["t"], c["injected"], color="C3", linestyle="--", label="injected (breaks)")
     ax.legend(loc="best")
 else:
@@ -76,6 +78,7 @@ fig.savefig(sys.argv[1], format="png", dpi=100, metadata={"Software": None})
 
 struct EnergySeries {
     std::vector<double> t, kinetic, potential, stored, injected;
+    std::vector<double> elastic;  // empty in files of older versions
 };
 
 std::vector<std::string> split(const std::string& line, char sep) {
@@ -97,23 +100,29 @@ EnergySeries read_energy_csv(const std::string& path) {
     const char* fix = "give an energy CSV written by shatter simulate (OUT.energy.csv)";
     if (lines.empty()) throw_input_error(path, "empty energy CSV", fix);
     const std::vector<std::string> header = split(lines[0], ',');
-    const char* names[] = {"time_s", "kinetic_J", "potential_J", "stored_J", "injected_J"};
-    size_t column[5];
-    for (int k = 0; k < 5; ++k) {
+    // The last column is optional (older files have none).
+    const char* names[] = {"time_s", "kinetic_J", "potential_J", "stored_J", "injected_J", "elastic_J"};
+    size_t column[6];
+    int columns = 6;
+    for (int k = 0; k < 6; ++k) {
         auto it = std::find(header.begin(), header.end(), names[k]);
+        if (it == header.end() && k == 5) {
+            columns = 5;
+            break;
+        }
         if (it == header.end())
             throw_input_error(path + ":1", fmt::format("header '{}' has no column {}", lines[0], names[k]), fix);
         column[k] = size_t(it - header.begin());
     }
     EnergySeries s;
-    std::vector<double>* series[] = {&s.t, &s.kinetic, &s.potential, &s.stored, &s.injected};
+    std::vector<double>* series[] = {&s.t, &s.kinetic, &s.potential, &s.stored, &s.injected, &s.elastic};
     for (size_t i = 1; i < lines.size(); ++i) {
         const std::string where = fmt::format("{}:{}", path, i + 1);
         const std::vector<std::string> fields = split(lines[i], ',');
         if (fields.size() != header.size())
             throw_input_error(where, fmt::format("{} fields where the header has {}", fields.size(), header.size()),
                               fix);
-        for (int k = 0; k < 5; ++k) {
+        for (int k = 0; k < columns; ++k) {
             const std::string& f = fields[column[k]];
             double v = 0;
             auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
@@ -135,7 +144,8 @@ std::string plot_input(const std::vector<EnergyCurve>& curves, const std::string
                                {"kinetic", s.kinetic},
                                {"potential", s.potential},
                                {"stored", s.stored},
-                               {"injected", s.injected}});
+                               {"injected", s.injected},
+                               {"elastic", s.elastic}});
     }
     return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }

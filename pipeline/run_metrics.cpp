@@ -52,6 +52,29 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
             if (std::abs(t - (first_break + 0.1)) < best) best = std::abs(t - (first_break + 0.1)), kinetic_after = k;
         }
     }
+    // The largest joint residual of any step (the energy books' joint_residual column, each row
+    // the largest of its frame's steps) and when; absent from files of older versions.
+    std::optional<double> residual, residual_at;
+    {
+        std::istringstream rows(energy_csv_text);
+        std::string row;
+        std::getline(rows, row);
+        int column = -1, at = 0;
+        for (size_t start = 0, end; start <= row.size(); start = end + 1, ++at) {
+            end = std::min(row.find(',', start), row.size());
+            if (row.compare(start, end - start, "joint_residual") == 0) column = at;
+        }
+        while (column > 0 && std::getline(rows, row)) {
+            std::istringstream cells(row);
+            std::string cell;
+            double t = 0, r = 0;
+            for (int i = 0; std::getline(cells, cell, ','); ++i) {
+                if (i == 0) t = std::strtod(cell.c_str(), nullptr);
+                if (i == column) r = std::strtod(cell.c_str(), nullptr);
+            }
+            if (!residual || r > *residual) residual = r, residual_at = t;
+        }
+    }
     // Peak piece speed between recorded frames.
     double peak_speed = 0;
     for (uint32_t f = 1; f < traj.frames(); ++f)
@@ -72,6 +95,8 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
         first_break >= 0 ? json(spread_energy(model, traj, uint32_t(std::lround((first_break + 0.1) * traj.fps))))
                          : json(nullptr);
     j["peak_piece_speed_m_per_s"] = peak_speed;
+    j["joint_residual_max"] = residual ? json(*residual) : json(nullptr);
+    j["joint_residual_frame_s"] = residual_at ? json(*residual_at) : json(nullptr);
     return j;
 }
 

@@ -1,5 +1,7 @@
 #include "simulate/bullet_solver.h"
 
+#include "simulate/compliant_constraint.h"
+
 namespace shatter {
 
 namespace {
@@ -66,11 +68,24 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
                                                                          numManifolds, nullptr, 0, info, debugDrawer);
     btScalar residual = 0;
     const auto add = [&residual](btScalar r) { residual = btMax(residual, r * r); };
-    for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
-        btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[m_orderNonContactConstraintPool[j]];
-        if (iteration < row.m_overrideNumSolverIterations) add(solve_row(row, true));
+    if (tolerance_ > 0) {
+        btScalar most = 0;
+        for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
+            const int r = m_orderNonContactConstraintPool[j];
+            btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
+            if (!extra_ && iteration >= row.m_overrideNumSolverIterations) continue;
+            const btScalar correction = solve_row(row, true);  // dl w
+            add(correction);
+            most = btMax(most, btFabs(correction * row.m_jacDiagABInv) * row_scale_[r]);
+        }
+        joint_residual_ = most;
+    } else {
+        for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
+            btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[m_orderNonContactConstraintPool[j]];
+            if (iteration < row.m_overrideNumSolverIterations) add(solve_row(row, true));
+        }
     }
-    if (iteration >= info.m_numIterations) return residual;
+    if (iteration >= info.m_numIterations && !extra_) return residual;
     for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j)
         add(solve_row(m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]], false));
     for (int j = 0; j < m_tmpSolverContactFrictionConstraintPool.size(); ++j) {
@@ -140,6 +155,41 @@ void PieceSolver::convertJoints(btTypedConstraint** constraints, int count, cons
         }
         row += size.m_numConstraintRows;
     }
+}
+
+btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
+                                                        btPersistentManifold** manifolds, int numManifolds,
+                                                        btTypedConstraint** constraints, int numConstraints,
+                                                        const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+    const int own = btMax(m_maxOverrideNumSolverIterations, info.m_numIterations);
+    most_iterations_ = btMax(most_iterations_, own);
+    if (!(tolerance_ > 0) || m_tmpSolverNonContactConstraintPool.size() == 0)
+        return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
+            bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+    // Bullet's loop (split-impulse pass, then `own` iterations: Bullet's residual threshold is 0,
+    // so it never stops early), then more until the joints converge.
+    solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifolds, numManifolds, constraints, numConstraints,
+                                                  info, debugDrawer);
+    const btScalar inv_h = btScalar(1) / info.m_timeStep;
+    row_scale_.resizeNoInitialize(m_tmpSolverNonContactConstraintPool.size());
+    for (int r = 0; r < m_tmpSolverNonContactConstraintPool.size(); ++r) {
+        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
+        const auto* c = static_cast<const CompliantPointConstraint*>(row.m_originalContactPoint);
+        row_scale_[r] = c->strength() > 0 && row.m_cfm > 0 ? inv_h / (row.m_cfm * btScalar(c->strength())) : 0;
+    }
+    int iteration = 0;
+    extra_ = false;
+    for (; iteration < own; ++iteration)
+        solveSingleIteration(iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info,
+                             debugDrawer);
+    extra_ = true;
+    for (; joint_residual_ > tolerance_ && iteration < max_iterations_; ++iteration)
+        solveSingleIteration(iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info,
+                             debugDrawer);
+    extra_ = false;
+    most_iterations_ = btMax(most_iterations_, iteration);
+    most_residual_ = btMax(most_residual_, double(joint_residual_));
+    return 0;
 }
 
 btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,

@@ -22,8 +22,29 @@
 
 namespace shatter {
 
+// Convergence (converge(), off by default): after the step's iterations, the joint rows (and the
+// contacts with them) are iterated again until every joint's force matches its spring law within
+// `tolerance` of its strength, or `max_iterations` is reached. A joint row's correction dl at its
+// update is the impulse that would zero its equation; its force mismatch is dl / (h CFM)
+// (docs/physics.md, "Joint convergence"). Only CompliantPointConstraints may be added.
 class PieceSolver : public btSequentialImpulseConstraintSolver {
+public:
+    void converge(double tolerance, int max_iterations) {
+        tolerance_ = tolerance;
+        max_iterations_ = max_iterations;
+    }
+    // Over the solves since reset_counts() (Bullet solves islands in batches, each its own call):
+    // the most iterations one took, and the largest joint residual left after its iterations
+    // (converge() on; else 0).
+    void reset_counts() { most_iterations_ = 0, most_residual_ = 0; }
+    int most_iterations() const { return most_iterations_; }
+    double most_residual() const { return most_residual_; }
+
 protected:
+    btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
+                                               btPersistentManifold** manifolds, int numManifolds,
+                                               btTypedConstraint** constraints, int numConstraints,
+                                               const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
     btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
                                   btPersistentManifold** manifolds, int numManifolds, btTypedConstraint** constraints,
                                   int numConstraints, const btContactSolverInfo& info,
@@ -35,6 +56,14 @@ protected:
 private:
     btScalar solve_row(btSolverConstraint& row, bool upper_limit);
     void write_back_joints(const btContactSolverInfo& info);
+
+    double tolerance_ = 0;
+    int max_iterations_ = 0;
+    bool extra_ = false;                 // in the iterations past the step's own count
+    btAlignedObjectArray<btScalar> row_scale_;  // per joint row: 1 / (h CFM strength)
+    btScalar joint_residual_ = 0;        // of the current iteration
+    int most_iterations_ = 0;
+    double most_residual_ = 0;
 };
 
 }  // namespace shatter

@@ -5,6 +5,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <functional>
@@ -106,6 +107,7 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     m.world.setGravity(to_bullet(setup.scene.gravity));
     btContactSolverInfo& info = m.world.getSolverInfo();
     info.m_numIterations = int(setup.iterations);
+    m.solver.converge(setup.converge_tolerance, int(std::max(setup.max_iterations, setup.iterations)));
     info.m_splitImpulse = 1;  // penetration is resolved without adding kinetic energy
     info.m_splitImpulsePenetrationThreshold = 0;
 
@@ -300,6 +302,7 @@ void BulletWorld::build_joints(const Model& model) {
         j.constraint = std::make_unique<CompliantPointConstraint>(
             *a.body, *b.body, a.body->getWorldTransform().inverse() * pivot, b.body->getWorldTransform().inverse() * pivot,
             setup_.material.stiffness * c.area, setup_.material.damping * c.area, setup_.h);
+        j.constraint->set_strength(j.strength);
         if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * setup_.h));
         m.world.addConstraint(j.constraint.get(), true);
         j.active = true;
@@ -308,9 +311,12 @@ void BulletWorld::build_joints(const Model& model) {
 
 void BulletWorld::step() {
     time_ += setup_.h;
+    impl_->solver.reset_counts();
     impl_->world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
     release_parted_pairs();
 }
+
+int BulletWorld::last_step_iterations() const { return impl_->solver.most_iterations(); }
 
 struct BulletWorld::Snapshot {
     struct Body {
@@ -484,6 +490,49 @@ double BulletWorld::stored_energy() const {
     double e = 0;
     for (const auto& j : impl_->joints)
         if (j.active) e += Impl::stored_energy_of(j);
+    return e;
+}
+
+BulletWorld::JointStretch BulletWorld::joint_stretch(size_t c) const {
+    const auto& j = impl_->joints[c];
+    JointStretch out;
+    if (!j.constraint) return out;
+    const CompliantPointConstraint& k = *j.constraint;
+    const btRigidBody& a = k.getRigidBodyA();
+    const btRigidBody& b = k.getRigidBodyB();
+    const btVector3 pa = a.getWorldTransform() * k.getPivotInA();
+    const btVector3 pb = b.getWorldTransform() * k.getPivotInB();
+    out.stretch = to_eigen(pb - pa);
+    out.rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
+                        a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
+    out.force_on_a = to_eigen(k.feedback().m_appliedForceBodyA);
+    return out;
+}
+
+double BulletWorld::joint_residual(size_t c) const {
+    const auto& j = impl_->joints[c];
+    if (!j.active || !j.constraint || !(j.strength > 0)) return 0;
+    const JointStretch s = joint_stretch(c);
+    const Vec3 spring = j.constraint->stiffness() * s.stretch + j.constraint->damping() * s.rate;
+    return (s.force_on_a - spring).norm() / j.strength;
+}
+
+double BulletWorld::max_joint_residual(int64_t* worst) const {
+    double most = 0;
+    *worst = -1;
+    for (size_t c = 0; c < impl_->joints.size(); ++c) {
+        const double r = joint_residual(c);
+        if (r > most) most = r, *worst = int64_t(c);
+    }
+    return most;
+}
+
+double BulletWorld::elastic_energy() const {
+    double e = 0;
+    for (size_t c = 0; c < impl_->joints.size(); ++c) {
+        const auto& j = impl_->joints[c];
+        if (j.active && j.constraint) e += 0.5 * j.constraint->stiffness() * joint_stretch(c).stretch.squaredNorm();
+    }
     return e;
 }
 

@@ -37,6 +37,11 @@ struct WorldSetup {
     // Bullet's own breaking: each constraint gets the impulse threshold strength x h, which the
     // solver checks per world-axis row and then disables the constraint (bullet_disabled).
     bool bullet_breaking = false;
+    // Joint convergence (simulate/bullet_solver.h): more iterations, up to max_iterations, until
+    // every joint's force is within converge_tolerance of its strength from its spring law;
+    // 0: off (exactly `iterations`).
+    double converge_tolerance = 0;
+    uint32_t max_iterations = 0;
 };
 
 class BulletWorld {
@@ -49,6 +54,8 @@ public:
     // One solver step of h; scripted bodies move to their place at the step's end.
     void step();
     double time() const { return time_; }
+    // The most solver iterations a batch of islands took in the last step.
+    int last_step_iterations() const;
     double h() const { return setup_.h; }
 
     // State of every body, for rollback.
@@ -70,6 +77,21 @@ public:
     bool bullet_disabled(size_t c) const;
     // Enables it again (a Bullet break the break policy did not pick).
     void enable(size_t c);
+    // A joint's spring as the bodies show it after a step: the stretch d = (pivot on B) - (pivot
+    // on A), its rate d' (the pivots' relative velocity), and the force on A the solver applied in
+    // that step (world frame).
+    struct JointStretch {
+        Vec3 stretch = Vec3::Zero();     // (unit: m)
+        Vec3 rate = Vec3::Zero();        // (unit: m/s)
+        Vec3 force_on_a = Vec3::Zero();  // (unit: N)
+    };
+    JointStretch joint_stretch(size_t c) const;
+    // How far the last solve is from the joint's spring law: |f_A - (k d + c d')| / strength, the
+    // force the solver applied against the force the stretch asks for, relative to the joint's
+    // strength (docs/physics.md, "Joint convergence"). 0 for a joint that is not active.
+    double joint_residual(size_t c) const;
+    // The largest joint_residual over the active joints, and which (-1 when there is none).
+    double max_joint_residual(int64_t* worst) const;
     // Removes it from the world (its pieces may collide again when no other constraint joins them).
     void remove_constraint(size_t c);
     // The two bodies at the constraint's pivot (its mid-point), for energize().
@@ -83,6 +105,9 @@ public:
     double kinetic_energy_of_pair(size_t c, const Vec3& frame = Vec3::Zero()) const;
     double potential_energy() const;  // -sum m g.x (unit: J)
     double stored_energy() const;     // sum over active constraints of |f|^2 / 2k (unit: J)
+    // The same read from the poses: sum over active constraints of k |d|^2 / 2, d the stretch
+    // (joint_stretch). Equal to stored_energy() when every joint's force matches its stretch.
+    double elastic_energy() const;    // (unit: J)
     Vec3 linear_momentum() const;     // (unit: kg m/s)
     Vec3 angular_momentum() const;    // about the world origin (unit: kg m^2/s)
     bool finite() const;              // every body's position and velocity finite

@@ -28,12 +28,16 @@ public:
 
     double stiffness() const { return k_; }
     double damping() const { return c_; }
+    // The force at which it breaks (unit: N): the scale of its convergence residual.
+    double strength() const { return strength_; }
+    void set_strength(double strength) { strength_ = strength; }
     // The largest row CFM of the last step (1 / (w h (h k + c)) over the three rows).
     double last_max_cfm() const { return last_max_cfm_; }
     const btJointFeedback& feedback() const { return feedback_; }
 
 private:
     double k_, c_, h_;
+    double strength_ = 0;
     double last_max_cfm_ = 0;
     btJointFeedback feedback_;
 };

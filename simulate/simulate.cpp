@@ -78,8 +78,14 @@ public:
         if (in_.simulate.rollback) start = world_.save();
         world_.step();
         ++out.steps;
+        int64_t worst = -1;
+        const double r = world_.max_joint_residual(&worst);
+        frame_residual_ = std::max(frame_residual_, r);
+        if (r > out.residual.residual) out.residual = {r, world_.time(), worst};
         const std::vector<Overload> over = find_overloads(world_, in_.simulate.break_criterion);
         const std::vector<size_t> broken = policy_.select(over, world_.time());
+        if (broken.empty() && out.breaks.empty() && r > out.residual_before_break.residual)
+            out.residual_before_break = {r, world_.time(), worst};
         if (broken.empty()) return;
         // The load at the break defines E and the directions; a rollback re-runs the step without
         // the broken constraints, and the impulses then act on the re-run state.
@@ -104,9 +110,12 @@ public:
 
     double injected() const { return injected_; }  // (unit: J)
 
-    EnergySample books() const {
-        return {world_.time(), world_.kinetic_energy(), world_.potential_energy(), world_.stored_energy(), injected_,
-                removed_};
+    // The books at the end of a frame; the residual is the frame's largest (and starts again).
+    EnergySample books() {
+        const EnergySample e{world_.time(),    world_.kinetic_energy(), world_.potential_energy(),
+                             world_.stored_energy(), injected_, removed_, world_.elastic_energy(), frame_residual_};
+        frame_residual_ = 0;
+        return e;
     }
 
 private:
@@ -124,6 +133,7 @@ private:
     BreakPolicy policy_;
     EnergizeSettings energize_;
     double injected_ = 0, removed_ = 0;
+    double frame_residual_ = 0;
 };
 
 std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model) {
@@ -241,6 +251,17 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     t.complete = out.complete;
+    // Before the first break, a structure under load should hold forces its stretch explains;
+    // an impact's pushes (docs/physics.md section 5a) are not the solve's to fix.
+    const ResidualPeak& r = out.residual_before_break;
+    if (r.residual > kResidualTolerance)
+        spdlog::warn("simulate: the joints' forces do not match their stretch: up to {:.1f}% of the strength off "
+                     "(constraint {}, pieces {} and {}, at {:.4f} s, before the first break; tolerance {:g}%): the "
+                     "solve, or a contact's push, left them apart and the energy books miss the difference "
+                     "(docs/physics.md section 5a; more [simulate] iterations help where the solve is the cause, "
+                     "now {})",
+                     100 * r.residual, r.constraint, world.piece_a(size_t(r.constraint)),
+                     world.piece_b(size_t(r.constraint)), r.time, 100 * kResidualTolerance, in.simulate.iterations);
     return out;
 }
 

@@ -51,7 +51,22 @@ struct EnergySample {
     double stored = 0;     // in the active constraints, |f|^2 / 2k
     double injected = 0;   // by energizing so far, in the world's frame (injected + momentum work)
     double removed = 0;    // stored energy of the constraints broken so far
+    double elastic = 0;    // in the active constraints by their stretch, k |d|^2 / 2
+    // The largest joint residual (BulletWorld::joint_residual: the solver's force against the
+    // stretch's, over the strength) in the steps since the previous sample (unit: 1)
+    double residual = 0;
 };
+
+// The largest joint residual of a run: where the joints' forces matched their stretch least.
+struct ResidualPeak {
+    double residual = 0;      // (unit: 1, of the joint's strength)
+    double time = -1;         // (unit: s)
+    int64_t constraint = -1;  // -1: no active joint
+};
+
+// A residual above this fraction of a joint's strength means the solve did not converge: the
+// joints' forces are not what their stretch says, and the books miss the difference.
+inline constexpr double kResidualTolerance = 0.05;
 
 // Where the instability guard found a run unstable (simulate/instability.h); -1: none named.
 struct InstabilityWhere {
@@ -70,6 +85,8 @@ struct SimulationResult {
     // negative when the simulation reached max_duration first, or without "auto" (unit: s).
     double rest_time = -1;
     double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
+    ResidualPeak residual;        // over every step (before each step's breaks)
+    ResidualPeak residual_before_break;  // over the steps before the first break's
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
     InstabilityWhere stopped_at;
