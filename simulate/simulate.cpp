@@ -217,16 +217,21 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     out.energy.push_back(run.books());
 
     const uint32_t frames = frame_count(in.simulate);
-    // duration = "auto": the fastest point of each piece (|v| + |w| r) against kRestSpeed.
+    // duration = "auto": the fastest point of each piece between the last two recorded frames
+    // ((|dx| + angle r) x fps) against kRestSpeed. The recorded motion, not the velocities of the
+    // frame's last step: a piece resting on others jitters at a few cm/s while it stays put.
     std::vector<double> radius(world.pieces(), 0.0);
     for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i)
         for (const Vec3& v : model.pieces[i].surface.vertices)
             radius[i] = std::max(radius[i], (v - model.pieces[i].mass.center).norm());
-    auto at_rest = [&] {
-        for (uint32_t i = 0; i < world.pieces(); ++i)
-            if (world.piece_dynamic(i) &&
-                !(world.piece_velocity(i).norm() + world.piece_angular_velocity(i).norm() * radius[i] < kRestSpeed))
+    auto at_rest = [&](uint32_t f) {
+        for (uint32_t i = 0; i < world.pieces(); ++i) {
+            if (!world.piece_dynamic(i)) continue;
+            const BodyPose &a = t.pose(f - 1, i), &b = t.pose(f, i);
+            const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
+            if (!(((b.position - a.position).cast<double>().norm() + angle * radius[i]) * in.simulate.fps < kRestSpeed))
                 return false;
+        }
         return true;
     };
     const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
@@ -243,7 +248,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         out.energy.push_back(run.books());
         progress.advance();
         if (in.simulate.auto_duration) {
-            still = at_rest() ? still + 1 : 0;
+            still = at_rest(f) ? still + 1 : 0;
             if (still >= hold_frames) {
                 out.rest_time = (f - still) / in.simulate.fps;
                 break;

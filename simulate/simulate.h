@@ -116,8 +116,9 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
 // duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);
 
-// duration = "auto": a piece is at rest when no point of it moves faster than kRestSpeed
-// (|v| + |w| r, r its radius about its centre of mass); the simulation ends once every dynamic
+// duration = "auto": a piece is at rest when no point of it moved faster than kRestSpeed between
+// the last two recorded frames ((|dx| + angle r) x fps, r its radius about its centre of mass,
+// from the poses the trajectory keeps); the simulation ends once every dynamic
 // piece has been at rest for kRestHold, checked at frame boundaries (deterministic), or at
 // max_duration.
 inline constexpr double kRestSpeed = 0.02;  // (unit: m/s)
