@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps build demo test bench asan fuzz study corpus clean
+.PHONY: all deps build demo test bench asan fuzz study corpus corpus-run clean
 
 all: build
 
@@ -44,6 +44,10 @@ study: build
 # defaults; the table goes to docs/corpus.md. A fixed sample of it runs in `make test`.
 corpus: build
 	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/corpus.md
+
+# `shatter run MESH` (the default shot, movie and all) on every mesh of the corpus: docs/corpus-run.md.
+corpus-run: build
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --run --workers 1 --table docs/corpus-run.md
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log out build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

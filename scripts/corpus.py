@@ -6,18 +6,26 @@ glmark2-data's models and assimp-testmodels (every file whose extension assimp r
 
   scripts/corpus.py SHATTER WORKDIR --all [--table docs/corpus.md]   the whole corpus (make corpus)
   scripts/corpus.py SHATTER WORKDIR --sample tests/corpus/sample.tsv  a fixed sample (make test)
+  scripts/corpus.py SHATTER WORKDIR --all --run [--table docs/corpus-run.md]
+                                     `shatter run MESH` on every mesh (make corpus-run)
 
 Each mesh runs as `shatter prescore MESH -o WORKDIR/NAME.model` with a time limit. A mesh passes
 when it pre-scores (exit 0) or is refused with exit code 3 for a reason that makes it no solid
 mesh (empty, flat, no triangles, unreadable); a crash (any other exit code) or a run past the
 limit fails. --sample also checks each file's expected exit code and message. Prints one line per
 mesh and a summary; exits 1 when a mesh failed.
+
+With --run each mesh runs as `shatter run MESH -o WORKDIR/runs/NAME` (the default shot: prescore,
+simulate, render, encode, export, report) instead; it passes when it makes a movie, or is refused as
+above. The table adds what the run measured: breaks, fragments, the energy books (stored, injected,
+their ratio to alpha x stored) and the camera (pieces in view, stillness at the end).
 """
 import argparse
 import concurrent.futures
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tarfile
@@ -26,6 +34,7 @@ import time
 
 LIMIT_SECONDS = 20  # the target for one prescore on this project's 2-core machines (measured, not enforced)
 KILL_SECONDS = 180  # a prescore still running then has no end of its own: it fails
+RUN_KILL_SECONDS = 900  # the same for a whole `shatter run`
 CGAL_DATA = "/usr/share/doc/libcgal-dev/data.tar.gz"
 GLMARK2 = "/usr/share/glmark2/models"
 ASSIMP = "/usr/share/assimp/models"
@@ -81,12 +90,47 @@ def prescore(shatter, workdir, mesh):
             "tets": m.group(2) if m else "", "auto": auto, "error": error}
 
 
+def run_mesh(shatter, workdir, mesh):
+    """`shatter run MESH` into WORKDIR/runs/NAME; keeps summary.json, run.log, the movie and the report."""
+    name = re.sub(r"[^A-Za-z0-9._-]", "_", os.path.relpath(mesh, "/"))
+    out = os.path.join(workdir, "runs", name)
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    start = time.monotonic()
+    try:
+        p = subprocess.run([shatter, "run", mesh, "-o", out], capture_output=True, text=True, timeout=RUN_KILL_SECONDS)
+        code, err = p.returncode, p.stderr
+    except subprocess.TimeoutExpired:
+        code, err = "timeout", ""
+    seconds = time.monotonic() - start
+    r = {"file": mesh, "code": code, "seconds": seconds, "pieces": "", "tets": "", "error": "",
+         "auto": [m.group(1) for m in re.finditer(r"auto: (.*?) \(", err)]}
+    for line in err.splitlines():
+        if line.startswith("error:"):
+            r["error"] = line[len("error:"):].strip().replace(mesh + ": ", "")
+    m = re.search(r"camera \S+: (\d+)% of the pieces in view in the first frame, at least (\d+)% in every frame "
+                  r"\(frame \d+\), ([0-9.]+) s still at the end", err)
+    if m:
+        r["in_view_first"], r["in_view_least"], r["still_s"] = int(m.group(1)), int(m.group(2)), float(m.group(3))
+    try:
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        sim = summary["simulation"]
+        r.update(pieces=summary["model"]["pieces"], tets=summary["model"]["tets"], alpha=summary["alpha"],
+                 breaks=sim["breaks"], fragments=sim["fragments"], stored=sim["stored_energy_J"],
+                 injected=sim["injected_energy_J"], frames=sim["frames"],
+                 movie=os.path.exists(os.path.join(out, summary["files"].get("mp4", "-"))))
+    except (OSError, KeyError, ValueError):
+        r["movie"] = False
+    shutil.rmtree(os.path.join(out, "frames"), ignore_errors=True)  # the movie keeps them
+    return r
+
+
 def verdict(r):
     """'ok', 'refused' (no solid mesh, with its reason) or 'FAIL: why'."""
     if r["code"] == "timeout":
-        return "FAIL: still running after %d s" % KILL_SECONDS
+        return "FAIL: still running after %d s" % (RUN_KILL_SECONDS if "movie" in r else KILL_SECONDS)
     if r["code"] == 0:
-        return "ok"
+        return "ok" if r.get("movie", True) else "FAIL: no movie"
     if r["code"] == 3 and NOT_SOLID.search(r["error"]):
         return "refused"
     if r["code"] == 3:
@@ -147,6 +191,57 @@ def write_table(results, path, workdir):
     os.replace(path + ".tmp", path)
 
 
+def write_run_table(results, path, workdir):
+    ok = [r for r in results if verdict(r) == "ok"]
+    failed = [r for r in results if verdict(r).startswith("FAIL")]
+    ratios = [r["injected"] / (r["alpha"] * r["stored"]) for r in ok if r["alpha"] > 0 and r["stored"] > 0]
+    seen = [r for r in ok if "in_view_first" in r]
+    lines = [
+        "# The mesh corpus, run",
+        "",
+        "`shatter run MESH` (the default shot: a 1.5 m drop onto the ground, the defaults of assets/bunny.toml) on "
+        "every mesh of the corpus (docs/corpus.md): `make corpus-run` (scripts/corpus.py --run). A file passes when "
+        "the run makes a movie, or is refused with exit code 3 as no solid mesh; anything else, or a run still going "
+        "after %d s, fails. Times are wall times of the whole job (prescore, simulate, render, encode, .glb, report) "
+        "on a shared 2-core machine." % RUN_KILL_SECONDS,
+        "",
+        "| | |",
+        "| --- | --- |",
+        "| movies made | %d |" % len(ok),
+        "| refused: no solid mesh | %d |" % sum(verdict(r) == "refused" for r in results),
+        "| failed | %d |" % len(failed),
+        "| job time | median %.1f s, longest %.1f s |" % (sorted(r["seconds"] for r in ok)[len(ok) // 2] if ok else 0,
+                                                       max((r["seconds"] for r in ok), default=0)),
+        "| runs with breaks | %d |" % sum(r["breaks"] > 0 for r in ok),
+        "| injected / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
+        "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
+        "| every piece in view in the first frame | %d of %d |" % (sum(r["in_view_first"] == 100 for r in seen), len(seen)),
+        "| at least 90%% of the pieces in view in every frame | %d of %d |" % (sum(r["in_view_least"] >= 90 for r in seen),
+                                                                              len(seen)),
+        "| at most 1 s still at the end | %d of %d |" % (sum(r["still_s"] <= 1.0 for r in seen), len(seen)),
+        "",
+        "| file | result | pieces | breaks | fragments | stored (J) | injected / (alpha x stored) | in view: first, least (%) "
+        "| still at end (s) | time (s) |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in results:
+        f = r["file"]
+        shown = (os.path.relpath(f, workdir) if f.startswith(workdir) else f).replace("|", "\\|")
+        result = verdict(r)
+        if result != "ok":
+            lines.append("| %s | %s | | | | | | | | %.1f |" % (
+                shown, (result + (": " + short(r["error"]) if r["error"] else "")).replace("|", "\\|"), r["seconds"]))
+            continue
+        ratio = "%.4f" % (r["injected"] / (r["alpha"] * r["stored"])) if r["alpha"] > 0 and r["stored"] > 0 else "-"
+        view = "%d, %d" % (r["in_view_first"], r["in_view_least"]) if "in_view_first" in r else "-"
+        still = "%.2f" % r["still_s"] if "still_s" in r else "-"
+        lines.append("| %s | ok | %s | %d | %d | %.3g | %s | %s | %s | %.1f |" % (
+            shown, r["pieces"], r["breaks"], r["fragments"], r["stored"], ratio, view, still, r["seconds"]))
+    with open(path + ".tmp", "w") as out:
+        out.write("\n".join(lines) + "\n")
+    os.replace(path + ".tmp", path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("shatter")
@@ -154,6 +249,7 @@ def main():
     ap.add_argument("--all", action="store_true", help="the whole corpus")
     ap.add_argument("--sample", help="a TSV of FILE, EXPECTED EXIT CODE, TEXT THE MESSAGE CONTAINS")
     ap.add_argument("--table", help="write the Markdown table here")
+    ap.add_argument("--run", action="store_true", help="`shatter run MESH` instead of `shatter prescore MESH`")
     ap.add_argument("--workers", type=int, default=2)
     args = ap.parse_args()
     workdir = os.path.abspath(args.workdir)
@@ -173,7 +269,7 @@ def main():
         files = corpus(workdir)
     # Each result is appended to WORKDIR/results.jsonl as it comes, so that an interrupted --all
     # run resumes where it stopped (results of another shatter binary are not reused).
-    journal = os.path.join(workdir, "results.jsonl")
+    journal = os.path.join(workdir, "runs.jsonl" if args.run else "results.jsonl")
     stamp = "%s %d" % (os.path.realpath(args.shatter), int(os.path.getmtime(args.shatter)))
     done = {}
     if args.all and os.path.exists(journal):
@@ -186,7 +282,7 @@ def main():
     def run(f):
         if f in done:
             return done[f]
-        r = prescore(args.shatter, workdir, f)
+        r = (run_mesh if args.run else prescore)(args.shatter, workdir, f)
         r["shatter"] = stamp
         with lock, open(journal, "a") as out:
             out.write(json.dumps(r) + "\n")
@@ -208,8 +304,14 @@ def main():
     print("%d passed, %d failed" % (len(results) - failures, failures))
     print("corpus: %d meshes, %d pre-scored, %d refused (no solid mesh), %d failed" %
           (len(results), ok, sum(verdict(r) == "refused" for r in results), failures))
+    if args.run:
+        ratios = [r["injected"] / (r["alpha"] * r["stored"]) for r in results
+                  if verdict(r) == "ok" and r["alpha"] > 0 and r["stored"] > 0]
+        print("runs: %d movies; injected / (alpha x stored) from %.4g to %.4g; %d with negative injected energy" %
+              (sum(verdict(r) == "ok" for r in results), min(ratios, default=0), max(ratios, default=0),
+               sum(r.get("injected", 0) < 0 for r in results)))
     if args.table:
-        write_table(results, args.table, workdir)
+        (write_run_table if args.run else write_table)(results, args.table, workdir)
     return 1 if failures else 0
 
 
