@@ -23,6 +23,7 @@ RunCommand add_simulate_command(CLI::App& root);
 RunCommand add_run_command(CLI::App& root);
 RunCommand add_batch_command(CLI::App& root);
 RunCommand add_submit_command(CLI::App& root);
+RunCommand add_settings_doc_command(CLI::App& root);
 
 // Sets `field` from a flag that was given, after checking it against its limits (a Usage error
 // naming the flag otherwise).

@@ -1,5 +1,6 @@
-// The shot file's [scene] (with its [[scene.colliders]] and [[scene.kinematic]] arrays),
-// [object], [material] and [simulate] sections (docs/shot.md). Every key is checked against its
+// The shot file's arrays of tables: [[scene.colliders]], [[scene.kinematic]] and
+// [[object.driven]] (docs/shot.md); the scalar keys of [scene], [object], [material] and
+// [simulate] are declared in core/setting_table_scene.cpp. Every key is checked against its
 // limits where it is read; each entry of an array of tables is read as its own section, named
 // "scene.colliders[2]" (0-based), so that an unknown key there is an error with file:line.
 #include <filesystem>
@@ -14,11 +15,6 @@ namespace shatter {
 
 namespace {
 
-constexpr Limits kGravityLimits{-1e3, 1e3, "m/s^2"};
-constexpr Limits kPositionLimits{-1e6, 1e6, "m"};
-constexpr Limits kRotationLimits{-360, 360, "degrees"};
-constexpr Limits kVelocityLimits{-1e4, 1e4, "m/s"};
-constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
 constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
 constexpr Limits kRadiusLimits{1e-6, 1e6, "m"};
 constexpr Limits kColourLimits{0, 1, "(linear RGB)"};
@@ -214,67 +210,13 @@ bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const 
     return numbers(s, key, out, n, limits, example);
 }
 
-void read_scene_section(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
-    vec3(s, "gravity", scene.gravity, kGravityLimits, "[0, -9.81, 0]");
-    s.boolean("ground", scene.ground);
-    s.number("ground_height", scene.ground_height, kPositionLimits);
-    s.number("ground_friction", scene.ground_surface.friction, kFrictionLimits);
-    s.number("ground_restitution", scene.ground_surface.restitution, kRestitutionLimits);
+void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
     read_table_array(s, "colliders", shot_path, scene.colliders, read_collider);
     read_table_array(s, "kinematic", shot_path, scene.kinematic, read_kinematic);
-    s.finish();
 }
 
-void read_object_section(TomlSection& s, ObjectSettings& object) {
-    read_pose(s, object.pose);
-    vec3(s, "velocity", object.velocity, kVelocityLimits, "[0, -1, 0]");
-    vec3(s, "angular_velocity", object.angular_velocity, kAngularVelocityLimits, "[0, 3.14, 0]");
+void read_object_driven(TomlSection& s, ObjectSettings& object) {
     read_table_array(s, "driven", "", object.driven, read_drive);
-    s.finish();
-}
-
-void read_material_section(TomlSection& s, MaterialSettings& material) {
-    double density = 0;
-    if (s.number("density", density, kDensityLimits)) material.density = density;
-    s.number("stiffness", material.stiffness, kStiffnessLimits);
-    s.number("damping", material.damping, kDampingLimits);
-    s.number("strength", material.strength, kStrengthLimits);
-    s.number("alpha", material.alpha, kAlphaLimits);
-    s.boolean("stiffen", material.stiffen);
-    read_surface(s, material.surface);
-    s.finish();
-}
-
-void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
-    const toml::node* duration = s.node("duration");
-    if (duration && duration->is_string()) {
-        if (duration->as_string()->get() != "auto")
-            s.fail(duration, fmt::format("{} must be a number of seconds or \"auto\"", s.key_name("duration")),
-                   "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)");
-        simulate.auto_duration = true;
-    } else {
-        s.number("duration", simulate.duration, kDurationLimits);
-    }
-    s.number("max_duration", simulate.max_duration, kDurationLimits);
-    s.number("fps", simulate.fps, kFpsLimits);
-    s.integer("substeps", simulate.substeps, kSubstepsLimits);
-    s.integer("iterations", simulate.iterations, kIterationsLimits);
-    choice<EnergySplitMode>(s, "energy_split", simulate.energy_split,
-                            {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}});
-    choice<KickDirectionMode>(s, "directions", simulate.directions,
-                              {{"paper", KickDirectionMode::Paper},
-                               {"opposed", KickDirectionMode::Opposed},
-                               {"force", KickDirectionMode::Force}});
-    s.number("rate_limit", simulate.rate_limit, kRateLimitLimits);
-    s.boolean("rollback", simulate.rollback);
-    s.boolean("exact_energy", simulate.exact_energy);
-    s.integer("seed", simulate.seed);
-    s.number("max_cfm", simulate.max_cfm, kMaxCfmLimits);
-    choice<BreakCriterion>(s, "break_criterion", simulate.break_criterion,
-                           {{"force", BreakCriterion::Force}, {"bullet_impulse", BreakCriterion::BulletImpulse}});
-    choice<InstabilityMode>(s, "on_instability", simulate.on_instability,
-                            {{"stop", InstabilityMode::Stop}, {"clamp", InstabilityMode::Clamp}});
-    s.finish();
 }
 
 }  // namespace shatter

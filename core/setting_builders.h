@@ -1,0 +1,147 @@
+// The kinds of setting a section table declares (private to core/setting_table_*.cpp): each
+// builder makes one Setting from the key, where its value lives in the Shot, its limits and its
+// help, and fills the default and range columns from them.
+//
+//   at(&Shot::material, &MaterialSettings::alpha)    the field a setting reads into
+//   number / whole / seed / boolean / choice / optional_number / vec3 / custom
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/setting_table.h"
+#include "core/shot_sections.h"
+
+namespace shatter::table {
+
+// The field at a path of member pointers from the Shot: at(&Shot::scene, &SceneSettings::ground).
+template <class... M>
+auto at(M... members) {
+    return [=](Shot& s) -> auto& { return (s .* ... .* members); };
+}
+
+// The field of the [generate] section (set while that section is read).
+template <class M>
+auto generated(M member) {
+    return [=](Shot& s) -> auto& { return (*s.generate).*member; };
+}
+
+// The defaults every table's default column is taken from.
+inline Shot& defaults() {
+    static Shot shot = [] {
+        Shot s;
+        s.generate = GenerateSettings{};
+        return s;
+    }();
+    return shot;
+}
+
+inline std::string range_of(const Limits& l) { return short_number(l.min) + " to " + short_number(l.max); }
+
+template <class Get>
+Setting number(const char* key, const char* unit, Get get, Limits limits, const char* help) {
+    Setting s{key, unit, short_number(get(defaults())), range_of(limits), help, {}, {}};
+    s.read = [key, get, limits](TomlSection& t, Shot& shot) { t.number(key, get(shot), limits); };
+    return s;
+}
+
+template <class Get>
+Setting whole(const char* key, const char* unit, Get get, Limits limits, const char* help) {
+    Setting s{key, unit, std::to_string(get(defaults())), range_of(limits), help, {}, {}};
+    s.read = [key, get, limits](TomlSection& t, Shot& shot) { t.integer(key, get(shot), limits); };
+    return s;
+}
+
+template <class Get>
+Setting seed(const char* key, Get get, const char* help) {
+    Setting s{key, "", std::to_string(get(defaults())), ">= 0", help, {}, {}};
+    s.read = [key, get](TomlSection& t, Shot& shot) { t.integer(key, get(shot)); };
+    return s;
+}
+
+template <class Get>
+Setting boolean(const char* key, Get get, const char* help) {
+    Setting s{key, "", get(defaults()) ? "true" : "false", "true, false", help, {}, {}};
+    s.read = [key, get](TomlSection& t, Shot& shot) { t.boolean(key, get(shot)); };
+    return s;
+}
+
+// A string that must be one of `names`. `noun` ("a repair mode") and `fix` replace the generic
+// "is not one of ..." and "use ..." in the message when given.
+template <class E, class Get>
+Setting choice(const char* key, Get get, std::vector<std::pair<const char*, E>> names, const char* help,
+               const char* noun = "", const char* fix = "") {
+    std::vector<std::string> plain, quoted;
+    std::string def;
+    for (const auto& [name, value] : names) {
+        plain.push_back(name);
+        quoted.push_back(fmt::format("\"{}\"", name));
+        if (value == get(defaults())) def = quoted.back();
+    }
+    Setting s{key, "", def, fmt::format("{}", fmt::join(plain, ", ")), help, {}, {}};
+    s.read = [=](TomlSection& t, Shot& shot) {
+        std::string text;
+        if (!t.text(key, text)) return;
+        for (const auto& [name, value] : names)
+            if (text == name) {
+                get(shot) = value;
+                return;
+            }
+        const std::string problem = *noun ? fmt::format("{} = \"{}\" is not {}", t.key_name(key), text, noun)
+                                          : fmt::format("{} = \"{}\" is not one of {}", t.key_name(key), text,
+                                                        fmt::join(quoted, ", "));
+        t.fail(t.node(key), problem, *fix ? std::string(fix) : fmt::format("use {}", fmt::join(quoted, " or ")));
+    };
+    return s;
+}
+
+// An optional number: unset by default ("auto" in the file unsets it too).
+template <class Get>
+Setting optional_number(const char* key, const char* unit, Get get, Limits limits, const char* help,
+                        const char* unset_text) {
+    Setting s{key, unit, unset_text, range_of(limits) + ", or \"auto\"", help, {}, {}};
+    s.read = [key, get, limits](TomlSection& t, Shot& shot) {
+        const toml::node* n = t.node(key);
+        if (n && n->is_string() && n->as_string()->get() == "auto") {
+            get(shot).reset();
+            return;
+        }
+        double v = 0;
+        if (t.number(key, v, limits)) get(shot) = v;
+    };
+    return s;
+}
+
+template <class Get>
+Setting vec3(const char* key, const char* unit, Get get, Limits limits, const char* example, const char* help) {
+    const Vec3 d = get(defaults());
+    Setting s{key, unit, fmt::format("[{}, {}, {}]", short_number(d.x()), short_number(d.y()), short_number(d.z())),
+              "each " + range_of(limits), help, {}, {}};
+    s.read = [key, get, limits, example](TomlSection& t, Shot& shot) {
+        read_numbers(t, key, get(shot).data(), 3, limits, example);
+    };
+    return s;
+}
+
+// A setting with its own reader; the docs columns are given.
+inline Setting custom(const char* key, const char* unit, const char* def, const char* range, const char* help,
+                      std::function<void(TomlSection&, Shot&)> read) {
+    Setting s{key, unit, def, range, help, {}, std::move(read)};
+    return s;
+}
+
+// The sections, one function each (core/setting_table_prescore.cpp, _scene.cpp, _render.cpp).
+SettingsSection mesh_section();
+SettingsSection generate_section();
+SettingsSection prescore_section();
+SettingsSection scene_section();
+SettingsSection object_section();
+SettingsSection material_section();
+SettingsSection simulate_section();
+SettingsSection render_section();
+
+}  // namespace shatter::table

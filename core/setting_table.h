@@ -1,0 +1,97 @@
+// Every setting of the shot, declared once. A section ([mesh], [prescore], [simulate], ...) is a
+// table of settings; each entry gives the key, its unit, default, range, the text that explains
+// it, the command-line flags that are aliases for it, and how to read it into the Shot. That one
+// entry drives:
+//   - the shot file reader and `--set SECTION.KEY=VALUE` (core/shot.cpp),
+//   - the flags of the stage commands and their --help (cmd/, through apply_flag below),
+//   - the tables of docs/shot.md and docs/render.md (settings_markdown; a test keeps them equal).
+// The definitions are in core/setting_table_*.cpp, one file per group of sections. Adding a
+// setting is one entry there plus the code that uses the new field.
+//
+// Arrays of tables ([[scene.colliders]], [[scene.kinematic]], [[object.driven]]) and composite
+// values (render's piece_colours) keep hand-written readers (core/shot_scene.cpp,
+// core/shot_render.cpp), called from their section's `read_extra`.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/shot.h"
+#include "core/toml_reader.h"
+
+namespace shatter {
+
+// How a command-line alias gives its setting a value: `--alpha 2` (Value), `--rollback`
+// (SetsTrue), `--no-adapt` (SetsFalse).
+enum class FlagKind { Value, SetsTrue, SetsFalse };
+
+struct FlagAlias {
+    std::string name;  // "--rate-limit"
+    FlagKind kind = FlagKind::Value;
+};
+
+struct Setting {
+    std::string key;           // "rate_limit"
+    std::string unit;          // for the docs and --help ("s", "kg/m^3"; "" for none)
+    std::string default_text;  // "0", "\"total\"", "(unset)"
+    std::string range;         // "0 to 3600", "total, per_body"
+    std::string help;          // what it means (docs and --help)
+    std::vector<FlagAlias> flags;
+    // Reads the key, when the section has it, into the shot; checks it and throws with
+    // TomlSection's messages ("WHERE: PROBLEM (fix: FIX)").
+    std::function<void(TomlSection&, Shot&)> read;
+
+    Setting& flag(std::string name, FlagKind kind = FlagKind::Value) {
+        flags.push_back({std::move(name), kind});
+        return *this;
+    }
+    Setting& shows(std::string text) {  // the default as the docs and --help say it
+        default_text = std::move(text);
+        return *this;
+    }
+    Setting& range_is(std::string text) {
+        range = std::move(text);
+        return *this;
+    }
+};
+
+struct SettingsSection {
+    std::string name;  // "simulate"
+    std::vector<Setting> settings;
+    // Keys the table does not hold (arrays of tables) and checks that join several keys; runs
+    // after the table's keys, before the unknown-key check.
+    std::function<void(TomlSection&, Shot&)> read_extra;
+};
+
+// The sections in shot-file order: mesh, generate, prescore, scene, object, material, simulate,
+// render.
+const std::vector<SettingsSection>& shot_settings();
+const SettingsSection* find_settings_section(const std::string& name);
+
+// Reads one section's table into the shot: every entry, then read_extra, then finish().
+void read_settings_section(const SettingsSection& section, TomlSection& s, Shot& shot);
+
+// A flag's text as a TOML value, as `--set` takes it: 0.5, "12mm", [0, 1, 0], false; a bare
+// word is a string. Throws Error(Usage) naming `where` when it is none of these.
+toml::table parse_override_value(const std::string& value, const std::string& where);
+
+// Applies one command-line alias of `setting` (in `section`) to the shot: `text` is the flag's
+// value (ignored for SetsTrue/SetsFalse). Errors name the flag and are usage errors.
+void apply_flag(const SettingsSection& section, const Setting& setting, const FlagAlias& alias,
+                const std::string& text, Shot& shot);
+
+// A shot with the defaults of every section and `overrides` (SECTION.KEY=VALUE, as load_shot
+// takes them): the stage commands' --set without --shot.
+Shot shot_from_overrides(const std::vector<std::string>& overrides);
+
+// The Markdown table of a section (| key | unit | default | range | flag | meaning |).
+std::string settings_markdown(const SettingsSection& section);
+// `doc` with the text between each "<!-- settings:NAME -->" and "<!-- /settings:NAME -->"
+// replaced by settings_markdown of section NAME. Throws std::runtime_error on an unknown NAME.
+std::string update_settings_docs(const std::string& doc);
+
+// A number as the docs write it: 0.5, 3600, 1e-6, 1e10.
+std::string short_number(double v);
+
+}  // namespace shatter
