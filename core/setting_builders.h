@@ -42,32 +42,41 @@ inline Shot& defaults() {
 
 inline std::string range_of(const Limits& l) { return short_number(l.min) + " to " + short_number(l.max); }
 
+// The value as it is (a number keeps its C++ type: uint32_t, uint64_t or double), and the
+// comparison with the default.
+template <class Get>
+Setting with_value_json(Setting s, const char* key, Get get) {
+    s.write = [key, get](const Shot& shot, nlohmann::ordered_json& j) { j[key] = get(const_cast<Shot&>(shot)); };
+    s.is_default = [get](const Shot& shot) { return get(const_cast<Shot&>(shot)) == get(defaults()); };
+    return s;
+}
+
 template <class Get>
 Setting number(const char* key, const char* unit, Get get, Limits limits, const char* help) {
     Setting s{key, unit, short_number(get(defaults())), range_of(limits), help, {}, {}};
     s.read = [key, get, limits](TomlSection& t, Shot& shot) { t.number(key, get(shot), limits); };
-    return s;
+    return with_value_json(s, key, get);
 }
 
 template <class Get>
 Setting whole(const char* key, const char* unit, Get get, Limits limits, const char* help) {
     Setting s{key, unit, std::to_string(get(defaults())), range_of(limits), help, {}, {}};
     s.read = [key, get, limits](TomlSection& t, Shot& shot) { t.integer(key, get(shot), limits); };
-    return s;
+    return with_value_json(s, key, get);
 }
 
 template <class Get>
 Setting seed(const char* key, Get get, const char* help) {
     Setting s{key, "", std::to_string(get(defaults())), ">= 0", help, {}, {}};
     s.read = [key, get](TomlSection& t, Shot& shot) { t.integer(key, get(shot)); };
-    return s;
+    return with_value_json(s, key, get);
 }
 
 template <class Get>
 Setting boolean(const char* key, Get get, const char* help) {
     Setting s{key, "", get(defaults()) ? "true" : "false", "true, false", help, {}, {}};
     s.read = [key, get](TomlSection& t, Shot& shot) { t.boolean(key, get(shot)); };
-    return s;
+    return with_value_json(s, key, get);
 }
 
 // A string that must be one of `names`. `noun` ("a repair mode") and `fix` replace the generic
@@ -96,13 +105,21 @@ Setting choice(const char* key, Get get, std::vector<std::pair<const char*, E>> 
                                                         fmt::join(quoted, ", "));
         t.fail(t.node(key), problem, *fix ? std::string(fix) : fmt::format("use {}", fmt::join(quoted, " or ")));
     };
+    s.write = [key, get, names](const Shot& shot, nlohmann::ordered_json& j) {
+        for (const auto& [name, value] : names)
+            if (value == get(const_cast<Shot&>(shot))) j[key] = name;
+    };
+    s.is_default = [get](const Shot& shot) { return get(const_cast<Shot&>(shot)) == get(defaults()); };
     return s;
 }
+
+// How the JSON says an optional number is unset.
+enum class Unset { Auto, Null, Omitted };
 
 // An optional number: unset by default ("auto" in the file unsets it too).
 template <class Get>
 Setting optional_number(const char* key, const char* unit, Get get, Limits limits, const char* help,
-                        const char* unset_text) {
+                        const char* unset_text, Unset unset_json) {
     Setting s{key, unit, unset_text, range_of(limits) + ", or \"auto\"", help, {}, {}};
     s.read = [key, get, limits](TomlSection& t, Shot& shot) {
         const toml::node* n = t.node(key);
@@ -112,6 +129,15 @@ Setting optional_number(const char* key, const char* unit, Get get, Limits limit
         }
         double v = 0;
         if (t.number(key, v, limits)) get(shot) = v;
+    };
+    s.write = [key, get, unset_json](const Shot& shot, nlohmann::ordered_json& j) {
+        const std::optional<double>& v = get(const_cast<Shot&>(shot));
+        if (v)
+            j[key] = *v;
+        else if (unset_json == Unset::Auto)
+            j[key] = "auto";
+        else if (unset_json == Unset::Null)
+            j[key] = nullptr;
     };
     return s;
 }
@@ -124,10 +150,14 @@ Setting vec3(const char* key, const char* unit, Get get, Limits limits, const ch
     s.read = [key, get, limits, example](TomlSection& t, Shot& shot) {
         read_numbers(t, key, get(shot).data(), 3, limits, example);
     };
+    s.write = [key, get](const Shot& shot, nlohmann::ordered_json& j) {
+        const Vec3& v = get(const_cast<Shot&>(shot));
+        j[key] = nlohmann::ordered_json::array({v.x(), v.y(), v.z()});
+    };
     return s;
 }
 
-// A setting with its own reader; the docs columns are given.
+// A setting with its own reader; the docs columns are given, and its JSON with .json().
 inline Setting custom(const char* key, const char* unit, const char* def, const char* range, const char* help,
                       std::function<void(TomlSection&, Shot&)> read) {
     Setting s{key, unit, def, range, help, {}, std::move(read)};

@@ -28,6 +28,14 @@ void read_settings_section(const SettingsSection& section, TomlSection& s, Shot&
     s.finish();
 }
 
+nlohmann::ordered_json settings_json(const std::string& name, const Shot& shot) {
+    const SettingsSection* section = find_settings_section(name);
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const Setting& setting : section->settings) setting.write(shot, j);
+    if (section->write_extra) section->write_extra(shot, j);
+    return j;
+}
+
 void apply_flag(const SettingsSection& section, const Setting& setting, const FlagAlias& alias,
                 const std::string& text, Shot& shot) {
     toml::table value;

@@ -4,9 +4,11 @@
 // entry drives:
 //   - the shot file reader and `--set SECTION.KEY=VALUE` (core/shot.cpp),
 //   - the flags of the stage commands and their --help (cmd/, through apply_flag below),
+//   - the settings JSON in model and trajectory files (settings_json: the table's order is the
+//     JSON's key order, which files already written fix),
 //   - the tables of docs/shot.md and docs/render.md (settings_markdown; a test keeps them equal).
 // The definitions are in core/setting_table_*.cpp, one file per group of sections. Adding a
-// setting is one entry there plus the code that uses the new field.
+// setting is one entry there plus the field and the code that uses it.
 //
 // Arrays of tables ([[scene.colliders]], [[scene.kinematic]], [[object.driven]]) and composite
 // values (render's piece_colours) keep hand-written readers (core/shot_scene.cpp,
@@ -41,6 +43,11 @@ struct Setting {
     // Reads the key, when the section has it, into the shot; checks it and throws with
     // TomlSection's messages ("WHERE: PROBLEM (fix: FIX)").
     std::function<void(TomlSection&, Shot&)> read;
+    // Writes the key into the settings JSON of model and trajectory files (or leaves it out,
+    // e.g. a key that is written only when it is not the default, so that files made before it
+    // existed keep their bytes).
+    std::function<void(const Shot&, nlohmann::ordered_json&)> write;
+    std::function<bool(const Shot&)> is_default;  // set by the builders that compare values
 
     Setting& flag(std::string name, FlagKind kind = FlagKind::Value) {
         flags.push_back({std::move(name), kind});
@@ -54,6 +61,17 @@ struct Setting {
         range = std::move(text);
         return *this;
     }
+    Setting& json(std::function<void(const Shot&, nlohmann::ordered_json&)> writer) {
+        write = std::move(writer);
+        return *this;
+    }
+    // In the JSON only when not the default.
+    Setting& json_unless_default() {
+        write = [w = write, d = is_default](const Shot& s, nlohmann::ordered_json& j) {
+            if (!d(s)) w(s, j);
+        };
+        return *this;
+    }
 };
 
 struct SettingsSection {
@@ -62,6 +80,8 @@ struct SettingsSection {
     // Keys the table does not hold (arrays of tables) and checks that join several keys; runs
     // after the table's keys, before the unknown-key check.
     std::function<void(TomlSection&, Shot&)> read_extra;
+    // Writes what read_extra reads, after the table's keys.
+    std::function<void(const Shot&, nlohmann::ordered_json&)> write_extra;
 };
 
 // The sections in shot-file order: mesh, generate, prescore, scene, object, material, simulate,
@@ -71,6 +91,11 @@ const SettingsSection* find_settings_section(const std::string& name);
 
 // Reads one section's table into the shot: every entry, then read_extra, then finish().
 void read_settings_section(const SettingsSection& section, TomlSection& s, Shot& shot);
+
+// The settings JSON of a section of `shot` (written into model and trajectory files): the
+// table's keys in table order, then write_extra. The to_json functions of the settings structs
+// call it.
+nlohmann::ordered_json settings_json(const std::string& section, const Shot& shot);
 
 // A flag's text as a TOML value, as `--set` takes it: 0.5, "12mm", [0, 1, 0], false; a bare
 // word is a string. Throws Error(Usage) naming `where` when it is none of these.

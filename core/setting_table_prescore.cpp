@@ -9,6 +9,8 @@ namespace shatter::table {
 
 namespace {
 
+using ojson = nlohmann::ordered_json;
+
 // A Length key: a number (fraction of the diagonal) or a string with a unit.
 void read_length(TomlSection& s, const char* key, Length& out,
                  void (*check)(const std::string&, const Length&, bool), const std::string& also = "") {
@@ -72,13 +74,14 @@ void read_end_size(TomlSection& s, Shot& shot) {
 
 SettingsSection mesh_section() {
     return {"mesh",
-            {custom("path", "", "(required)", "", "the mesh file; relative to the shot file's folder", read_mesh_path),
-             optional_number("size", "m", at(&Shot::mesh, &MeshSettings::size), kSizeLimits,
-                             "the longest side of the mesh's bounding box; wins over `scale`", "(unset)")
-                 .flag("--size"),
+            {custom("path", "", "(required)", "", "the mesh file; relative to the shot file's folder", read_mesh_path)
+                 .json([](const Shot& s, ojson& j) { j["path"] = s.mesh.path; }),
              optional_number("scale", "m per mesh unit", at(&Shot::mesh, &MeshSettings::scale), kScaleLimits,
-                             "multiplies every coordinate", "(the file's units)")
+                             "multiplies every coordinate", "(the file's units)", Unset::Auto)
                  .flag("--scale"),
+             optional_number("size", "m", at(&Shot::mesh, &MeshSettings::size), kSizeLimits,
+                             "the longest side of the mesh's bounding box; wins over `scale`", "(unset)", Unset::Omitted)
+                 .flag("--size"),
              choice<RepairMode>("repair", at(&Shot::mesh, &MeshSettings::repair),
                                 {{"auto", RepairMode::Auto}, {"always", RepairMode::Always}, {"never", RepairMode::Never}},
                                 "alpha-wrap: only when Mesh_3 cannot take the mesh, always, or never (refuse)",
@@ -93,6 +96,7 @@ SettingsSection mesh_section() {
              boolean("adapt", at(&Shot::mesh, &MeshSettings::adapt),
                      "raise the resolution, thicken thin walls, join slivers to their pieces, give each separate body "
                      "a piece (false: refuse such meshes)")
+                 .json_unless_default()
                  .flag("--no-adapt", FlagKind::SetsFalse)},
             {}};
 }
@@ -103,14 +107,18 @@ SettingsSection generate_section() {
                     "beam: `count` boxes in a row along x; plate: `count` x `count` boxes in the xz plane; chain: "
                     "`count` links lying on y = 0 between two end cubes (pieces 0 and count + 1, for "
                     "`[[object.driven]]`)",
-                    read_generate_kind),
+                    read_generate_kind)
+                 .json([](const Shot& s, ojson& j) { j["kind"] = to_string(s.generate->kind); }),
              whole("count", "count", generated(&GenerateSettings::count), kGenerateCountLimits,
                    "boxes in the row / per side of the plate / links")
                  .shows("beam 2, plate 5, chain 10"),
              vec3("size", "m", generated(&GenerateSettings::size), kGenerateSizeLimits, "[0.3, 0.03, 0.03]",
                   "full extents of one box (link)")
                  .shows("beam [0.3, 0.03, 0.03], plate [0.03, 0.03, 0.03], chain [0.03, 0.01, 0.01]"),
-             custom("end_size", "m", "0.05", "1e-4 to 100", "chain only: edge of the end cubes", read_end_size),
+             custom("end_size", "m", "0.05", "1e-4 to 100", "chain only: edge of the end cubes", read_end_size)
+                 .json([](const Shot& s, ojson& j) {
+                     if (s.generate->kind == GenerateKind::Chain) j["end_size"] = s.generate->end_size;
+                 }),
              whole("constraints_per_side", "count", generated(&GenerateSettings::constraints_per_side),
                    kConstraintsPerSideLimits, "n: n x n constraints per shared face (1: a ball joint at its centre)")
                  .shows("beam 2, plate 2, chain 1"),
@@ -129,6 +137,9 @@ SettingsSection prescore_section() {
                     "shell thickness: a fraction of the bounding-box diagonal (0.05) or a length (\"12mm\", "
                     "\"1.5cm\", \"0.02m\"); false: solid",
                     read_hollow)
+                 .json([](const Shot& s, ojson& j) {
+                     j["hollow"] = s.prescore.hollow ? ojson(s.prescore.hollow->str()) : ojson("solid");
+                 })
                  .flag("--hollow")
                  .flag("--solid", FlagKind::SetsFalse),
              number("resolution", "", at(&Shot::prescore, &PrescoreSettings::resolution), kResolutionLimits,
@@ -143,6 +154,7 @@ SettingsSection prescore_section() {
                         read_length(s, "collision_tolerance", shot.prescore.collision_tolerance,
                                     check_collision_tolerance);
                     })
+                 .json([](const Shot& s, ojson& j) { j["collision_tolerance"] = s.prescore.collision_tolerance.str(); })
                  .flag("--collision-tolerance"),
              whole("collision_max_parts", "count", at(&Shot::prescore, &PrescoreSettings::collision_max_parts),
                    kCollisionPartsLimits, "most convex parts per piece")

@@ -8,11 +8,14 @@ namespace shatter::table {
 
 namespace {
 
+using ojson = nlohmann::ordered_json;
+
 Setting colour(const char* key, std::array<float, 3> RenderSettings::*member, const char* help) {
     return custom(key, "sRGB", "", "#rrggbb", help, [key, member](TomlSection& s, Shot& shot) {
                read_srgb_colour(s, key, shot.render.*member);
            })
-        .shows(fmt::format("\"{}\"", srgb_hex(defaults().render.*member)));
+        .shows(fmt::format("\"{}\"", srgb_hex(defaults().render.*member)))
+        .json([key, member](const Shot& s, ojson& j) { j[key] = srgb_hex(s.render.*member); });
 }
 
 }  // namespace
@@ -23,16 +26,21 @@ SettingsSection render_section() {
                    "image width (the flag --size WxH sets both)"),
              whole("height", "pixels", at(&Shot::render, &RenderSettings::height), kImageSizeLimits, "image height"),
              custom("camera_position", "m", "framed", "finite, within 1e6", "camera position [x, y, z]",
-                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_position", shot.render.camera_position); }),
+                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_position", shot.render.camera_position); })
+                 .json([](const Shot& s, ojson& j) { put_render_point(j, "camera_position", s.render.camera_position); }),
              custom("camera_target", "m", "the animation's centre", "finite, within 1e6",
                     "the point looked at (needs camera_position)",
-                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_target", shot.render.camera_target); }),
+                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_target", shot.render.camera_target); })
+                 .json([](const Shot& s, ojson& j) { put_render_point(j, "camera_target", s.render.camera_target); }),
              choice<CameraMode>("camera", at(&Shot::render, &RenderSettings::camera),
                                 {{"follow", CameraMode::Follow}, {"whole", CameraMode::Whole}},
                                 "without camera_position: follow the pieces, or one fixed camera framing the whole "
                                 "animation",
                                 "a camera mode",
                                 "use \"follow\" (moves with the pieces) or \"whole\" (fixed, frames the whole animation)")
+                 .json([](const Shot& s, ojson& j) {  // what frames the shot when it places no camera
+                     if (!s.render.camera_position) j["camera"] = to_string(s.render.camera);
+                 })
                  .flag("--camera"),
              number("fov", "degrees", at(&Shot::render, &RenderSettings::fov), kFovLimits, "vertical field of view")
                  .flag("--fov"),
@@ -46,6 +54,7 @@ SettingsSection render_section() {
                         if (s.integer("msaa", shot.render.msaa, Limits{1, 4, "samples"}))
                             check_msaa(s.where(s.node("msaa")), shot.render.msaa, s.from_flag());
                     })
+                 .json([](const Shot& s, ojson& j) { j["msaa"] = s.render.msaa; })
                  .flag("--msaa"),
              number("key_azimuth", "degrees", at(&Shot::render, &RenderSettings::key_azimuth), kAzimuthLimits,
                     "key light direction, from the camera's direction about +Y, positive to the right")
@@ -62,7 +71,8 @@ SettingsSection render_section() {
                  .flag("--material-colour"),
              custom("piece_colours", "piece index, sRGB", "none", "`[{piece = 0, colour = \"#2f5fd0\"}, ...]`",
                     "these pieces in these colours whatever the mode (the chain's blue end cubes)",
-                    [](TomlSection& s, Shot& shot) { read_piece_colours(s, shot.render.piece_colours); }),
+                    [](TomlSection& s, Shot& shot) { read_piece_colours(s, shot.render.piece_colours); })
+                 .json([](const Shot& s, ojson& j) { put_piece_colours(j, s.render.piece_colours); }),
              number("fracture_tint", "fraction", at(&Shot::render, &RenderSettings::fracture_tint), kTintLimits,
                     "fracture faces: this fraction of the way from the piece colour to white")
                  .flag("--fracture-tint"),

@@ -8,6 +8,8 @@ namespace shatter::table {
 
 namespace {
 
+using ojson = nlohmann::ordered_json;
+
 // duration: seconds, or "auto" (until the pieces rest, at most max_duration).
 void read_duration(TomlSection& s, Shot& shot) {
     SimulateSettings& simulate = shot.simulate;
@@ -36,7 +38,8 @@ SettingsSection scene_section() {
              number("ground_restitution", "1",
                     at(&Shot::scene, &SceneSettings::ground_surface, &SurfaceSettings::restitution), kRestitutionLimits,
                     "bounciness of the ground")},
-            [](TomlSection& s, Shot& shot) { read_scene_arrays(s, shot.scene, s.file()); }};
+            [](TomlSection& s, Shot& shot) { read_scene_arrays(s, shot.scene, s.file()); },
+            [](const Shot& shot, ojson& j) { put_scene_arrays(shot.scene, j); }};
 }
 
 SettingsSection object_section() {
@@ -50,13 +53,14 @@ SettingsSection object_section() {
              vec3("angular_velocity", "rad/s", at(&Shot::object, &ObjectSettings::angular_velocity),
                   kAngularVelocityLimits, "[0, 3.14, 0]",
                   "initial angular velocity about the object's centre of mass")},
-            [](TomlSection& s, Shot& shot) { read_object_driven(s, shot.object); }};
+            [](TomlSection& s, Shot& shot) { read_object_driven(s, shot.object); },
+            [](const Shot& shot, ojson& j) { put_object_driven(shot.object, j); }};
 }
 
 SettingsSection material_section() {
     return {"material",
             {optional_number("density", "kg/m^3", at(&Shot::material, &MaterialSettings::density), kDensityLimits,
-                             "density of the pieces (overrides the one prescore used)", "the model's"),
+                             "density of the pieces (overrides the one prescore used)", "the model's", Unset::Null),
              number("stiffness", "N/m^3", at(&Shot::material, &MaterialSettings::stiffness), kStiffnessLimits,
                     "constraint stiffness per m^2 of area (~ Young's modulus / tet size)")
                  .flag("--stiffness"),
@@ -70,13 +74,14 @@ SettingsSection material_section() {
                     "fraction of a broken constraint's stored energy given back as kinetic energy (0: plain breaking; "
                     "> 1 for artistic effect)")
                  .flag("--alpha"),
-             boolean("stiffen", at(&Shot::material, &MaterialSettings::stiffen),
-                     "raise a stiffness too soft for the step (CFM above max_cfm) to the least that converges, times "
-                     "1.05, and log it, instead of refusing the shot; the default shot of `shatter run MESH` turns it on"),
              number("friction", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::friction),
                     kFrictionLimits, "Coulomb friction coefficient of the pieces"),
              number("restitution", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::restitution),
-                    kRestitutionLimits, "bounciness of the pieces")},
+                    kRestitutionLimits, "bounciness of the pieces"),
+             boolean("stiffen", at(&Shot::material, &MaterialSettings::stiffen),
+                     "raise a stiffness too soft for the step (CFM above max_cfm) to the least that converges, times "
+                     "1.05, and log it, instead of refusing the shot; the default shot of `shatter run MESH` turns it on")
+                 .json_unless_default()},
             {}};
 }
 
@@ -87,9 +92,10 @@ SettingsSection simulate_section() {
                     "has been at rest (no point of it faster than 0.02 m/s) for 0.5 s, checked at each frame, at most "
                     "max_duration; the movie then ends 0.5 s after the last piece comes to rest",
                     read_duration)
+                 .json([](const Shot& s, ojson& j) {
+                     j["duration"] = s.simulate.auto_duration ? ojson("auto") : ojson(s.simulate.duration);
+                 })
                  .flag("--duration"),
-             number("max_duration", "s", at(&Shot::simulate, &SimulateSettings::max_duration), kDurationLimits,
-                    "the cap of duration = \"auto\" (unused otherwise)"),
              number("fps", "frames/s", at(&Shot::simulate, &SimulateSettings::fps), kFpsLimits,
                     "frames recorded per second")
                  .flag("--fps"),
@@ -129,14 +135,21 @@ SettingsSection simulate_section() {
                                     {{"force", BreakCriterion::Force}, {"bullet_impulse", BreakCriterion::BulletImpulse}},
                                     "when a constraint is overloaded: \"force\": the norm of its force exceeds strength "
                                     "x area; \"bullet_impulse\": Bullet's per-row impulse test, for comparison "
-                                    "(docs/accuracy.md)"),
+                                    "(docs/accuracy.md)")
+                 .json_unless_default(),
              choice<InstabilityMode>("on_instability", at(&Shot::simulate, &SimulateSettings::on_instability),
                                      {{"stop", InstabilityMode::Stop}, {"clamp", InstabilityMode::Clamp}},
                                      "when a piece's state turns NaN/Inf or the kinetic energy exceeds what the scene "
                                      "can supply (docs/reliability.md): \"stop\": end there, keep the frames before, "
                                      "trajectory marked incomplete, exit code 5; \"clamp\": scale the velocities down "
                                      "to the limit and go on (counted and logged; a NaN still stops)")
-                 .flag("--on-instability")},
+                 .json_unless_default()
+                 .flag("--on-instability"),
+             number("max_duration", "s", at(&Shot::simulate, &SimulateSettings::max_duration), kDurationLimits,
+                    "the cap of duration = \"auto\" (unused otherwise)")
+                 .json([](const Shot& s, ojson& j) {
+                     if (s.simulate.auto_duration) j["max_duration"] = s.simulate.max_duration;
+                 })},
             {}};
 }
 

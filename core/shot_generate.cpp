@@ -2,6 +2,7 @@
 // its keys are declared in core/setting_table_prescore.cpp.
 
 #include "core/generate_settings.h"
+#include "core/setting_table.h"
 
 namespace shatter {
 
@@ -38,15 +39,10 @@ std::optional<GenerateKind> parse_generate_kind(const std::string& text) {
     return std::nullopt;
 }
 
-nlohmann::ordered_json to_json(const GenerateSettings& s) {
-    nlohmann::ordered_json j;
-    j["kind"] = to_string(s.kind);
-    j["count"] = s.count;
-    j["size"] = {s.size.x(), s.size.y(), s.size.z()};
-    if (s.kind == GenerateKind::Chain) j["end_size"] = s.end_size;
-    j["constraints_per_side"] = s.constraints_per_side;
-    j["density"] = s.density;
-    return j;
+nlohmann::ordered_json to_json(const GenerateSettings& s) {  // keys: core/setting_table_prescore.cpp
+    Shot shot;
+    shot.generate = s;
+    return settings_json("generate", shot);
 }
 
 }  // namespace shatter

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/render_settings.h"
+#include "core/setting_table.h"
 #include "core/shot_sections.h"
 
 namespace shatter {
@@ -130,30 +131,21 @@ void check_msaa(const std::string& where, uint32_t msaa, bool from_flag) {
                 fmt::format("{}: msaa = {} is not a sample count render offers (fix: 1 (off), 2 or 4)", where, msaa));
 }
 
+void put_render_point(nlohmann::ordered_json& j, const char* key, const std::optional<Vec3>& point) {
+    if (point) j[key] = {point->x(), point->y(), point->z()};
+}
+
+void put_piece_colours(nlohmann::ordered_json& j, const std::vector<std::pair<uint32_t, std::array<float, 3>>>& pieces) {
+    if (pieces.empty()) return;
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const auto& [piece, colour] : pieces) out.push_back({{"piece", piece}, {"colour", srgb_hex(colour)}});
+    j["piece_colours"] = out;
+}
+
 nlohmann::ordered_json to_json(const RenderSettings& s) {
-    nlohmann::ordered_json j;
-    j["width"] = s.width;
-    j["height"] = s.height;
-    if (s.camera_position) j["camera_position"] = {s.camera_position->x(), s.camera_position->y(), s.camera_position->z()};
-    if (s.camera_target) j["camera_target"] = {s.camera_target->x(), s.camera_target->y(), s.camera_target->z()};
-    if (!s.camera_position) j["camera"] = to_string(s.camera);  // what frames the shot when it places no camera
-    j["fov"] = s.fov;
-    j["shadows"] = s.shadows;
-    j["shadow_map"] = s.shadow_map;
-    j["msaa"] = s.msaa;
-    j["key_azimuth"] = s.key_azimuth;
-    j["key_elevation"] = s.key_elevation;
-    j["colour_mode"] = to_string(s.colour_mode);
-    j["material_colour"] = srgb_hex(s.material_colour);
-    if (!s.piece_colours.empty()) {
-        nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
-        for (const auto& [piece, colour] : s.piece_colours) pieces.push_back({{"piece", piece}, {"colour", srgb_hex(colour)}});
-        j["piece_colours"] = pieces;
-    }
-    j["fracture_tint"] = s.fracture_tint;
-    j["cavity_shade"] = s.cavity_shade;
-    j["background"] = srgb_hex(s.background);
-    return j;
+    Shot shot;
+    shot.render = s;
+    return settings_json("render", shot);
 }
 
 }  // namespace shatter

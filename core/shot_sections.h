@@ -23,6 +23,10 @@ inline constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
 void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path);
 // [[object.driven]] (core/shot_scene.cpp).
 void read_object_driven(TomlSection& s, ObjectSettings& object);
+// Their JSON, after the section's keys: "colliders" and "kinematic", "driven"
+// (core/scene_settings.cpp).
+void put_scene_arrays(const SceneSettings& scene, nlohmann::ordered_json& j);
+void put_object_driven(const ObjectSettings& object, nlohmann::ordered_json& j);
 // An array of `n` numbers under `key`, each within `limits`; `example` is a valid value for the
 // fix (core/shot_scene.cpp). False when the key is absent.
 bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const Limits& limits, const char* example);
@@ -33,5 +37,8 @@ bool read_render_point(TomlSection& s, const char* key, std::optional<Vec3>& out
 void read_srgb_colour(TomlSection& s, const char* key, std::array<float, 3>& out);
 void read_piece_colours(TomlSection& s, std::vector<std::pair<uint32_t, std::array<float, 3>>>& out);
 void check_render_camera(TomlSection& s, const RenderSettings& r);
+// Their JSON: the point (when set) and piece_colours (when not empty).
+void put_render_point(nlohmann::ordered_json& j, const char* key, const std::optional<Vec3>& point);
+void put_piece_colours(nlohmann::ordered_json& j, const std::vector<std::pair<uint32_t, std::array<float, 3>>>& pieces);
 
 }  // namespace shatter

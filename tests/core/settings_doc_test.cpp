@@ -28,7 +28,7 @@ TEST(SettingsDoc, TheDocsTablesAreTheDeclarations) {
     }
 }
 
-TEST(SettingsTable, EverySettingHasHelpAReaderAndFlagsUniqueInItsCommand) {
+TEST(SettingsTable, EverySettingHasHelpAReaderAJsonWriterAndFlagsUniqueInItsCommand) {
     const std::vector<std::vector<std::string>> commands = {
         {"mesh", "generate", "prescore"}, {"scene", "object", "material", "simulate"}, {"render"}};
     for (const auto& sections : commands) {
@@ -40,6 +40,7 @@ TEST(SettingsTable, EverySettingHasHelpAReaderAndFlagsUniqueInItsCommand) {
             for (const Setting& s : section->settings) {
                 EXPECT_FALSE(s.help.empty()) << name << "." << s.key;
                 EXPECT_TRUE(bool(s.read)) << name << "." << s.key;
+                EXPECT_TRUE(bool(s.write)) << name << "." << s.key << " has no JSON";
                 EXPECT_TRUE(keys.insert(s.key).second) << name << "." << s.key << " declared twice";
                 for (const FlagAlias& f : s.flags) EXPECT_TRUE(flags.insert(f.name).second) << f.name;
             }
