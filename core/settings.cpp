@@ -38,13 +38,6 @@ const char* to_string(RepairMode mode) {
     return "?";
 }
 
-std::optional<RepairMode> parse_repair_mode(const std::string& text) {
-    if (text == "auto") return RepairMode::Auto;
-    if (text == "always") return RepairMode::Always;
-    if (text == "never") return RepairMode::Never;
-    return std::nullopt;
-}
-
 void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
                   bool from_flag) {
     if (std::isfinite(value) && value >= limits.min && value <= limits.max) return;

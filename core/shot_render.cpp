@@ -89,19 +89,7 @@ void check_render_camera(TomlSection& s, const RenderSettings& r) {
 
 const char* to_string(ColourMode m) { return m == ColourMode::Pieces ? "pieces" : "material"; }
 
-std::optional<ColourMode> parse_colour_mode(const std::string& text) {
-    if (text == "pieces") return ColourMode::Pieces;
-    if (text == "material") return ColourMode::Material;
-    return std::nullopt;
-}
-
 const char* to_string(CameraMode m) { return m == CameraMode::Follow ? "follow" : "whole"; }
-
-std::optional<CameraMode> parse_camera_mode(const std::string& text) {
-    if (text == "follow") return CameraMode::Follow;
-    if (text == "whole") return CameraMode::Whole;
-    return std::nullopt;
-}
 
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text) {
     if (text.size() != 7 || text[0] != '#') return std::nullopt;
