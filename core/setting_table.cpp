@@ -68,14 +68,27 @@ std::string short_number(double v) {
     return plain;
 }
 
-std::string settings_markdown(const SettingsSection& section) {
+namespace {
+
+template <class Root>
+std::string markdown(const std::vector<BasicSetting<Root>>& settings) {
     std::string out = "| key | unit | default | range | flag | meaning |\n| --- | --- | --- | --- | --- | --- |\n";
-    for (const Setting& s : section.settings) {
+    for (const BasicSetting<Root>& s : settings) {
         std::string flags;
         for (const FlagAlias& f : s.flags) flags += fmt::format("{}`{}`", flags.empty() ? "" : ", ", f.name);
         out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", s.key, s.unit, s.default_text, s.range, flags, s.help);
     }
     return out;
+}
+
+}  // namespace
+
+std::string settings_markdown(const std::string& name) {
+    if (name == "scene.colliders") return markdown(collider_settings());
+    if (name == "scene.kinematic") return markdown(kinematic_settings());
+    const SettingsSection* section = find_settings_section(name);
+    if (!section) throw std::runtime_error("no settings section '" + name + "'");
+    return markdown(section->settings);
 }
 
 std::string update_settings_docs(const std::string& doc) {
@@ -88,12 +101,10 @@ std::string update_settings_docs(const std::string& doc) {
         const size_t name_end = doc.find(" -->\n", begin);
         if (name_end == std::string::npos) throw std::runtime_error("a settings marker without its end: " + doc.substr(begin, 40));
         const std::string name = doc.substr(begin + open.size(), name_end - begin - open.size());
-        const SettingsSection* section = find_settings_section(name);
-        if (!section) throw std::runtime_error("no settings section '" + name + "'");
         const std::string close = "<!-- /settings:" + name + " -->";
         const size_t end = doc.find(close, name_end);
         if (end == std::string::npos) throw std::runtime_error("no closing marker " + close);
-        out += doc.substr(pos, name_end + 5 - pos) + settings_markdown(*section);
+        out += doc.substr(pos, name_end + 5 - pos) + settings_markdown(name);
         pos = end;
     }
     return out + doc.substr(pos);

@@ -33,46 +33,51 @@ struct FlagAlias {
     FlagKind kind = FlagKind::Value;
 };
 
-struct Setting {
+// One setting of a table whose values live in a Root: the Shot for the sections, an entry's
+// struct for the arrays of tables ([[scene.colliders]]: ColliderSettings).
+template <class Root>
+struct BasicSetting {
     std::string key;           // "rate_limit"
     std::string unit;          // for the docs and --help ("s", "kg/m^3"; "" for none)
     std::string default_text;  // "0", "\"total\"", "(unset)"
     std::string range;         // "0 to 3600", "total, per_body"
     std::string help;          // what it means (docs and --help)
     std::vector<FlagAlias> flags;
-    // Reads the key, when the section has it, into the shot; checks it and throws with
+    // Reads the key, when the section has it, into the root; checks it and throws with
     // TomlSection's messages ("WHERE: PROBLEM (fix: FIX)").
-    std::function<void(TomlSection&, Shot&)> read;
+    std::function<void(TomlSection&, Root&)> read;
     // Writes the key into the settings JSON of model and trajectory files (or leaves it out,
     // e.g. a key that is written only when it is not the default, so that files made before it
     // existed keep their bytes).
-    std::function<void(const Shot&, nlohmann::ordered_json&)> write;
-    std::function<bool(const Shot&)> is_default;  // set by the builders that compare values
+    std::function<void(const Root&, nlohmann::ordered_json&)> write;
+    std::function<bool(const Root&)> is_default;  // set by the builders that compare values
 
-    Setting& flag(std::string name, FlagKind kind = FlagKind::Value) {
+    BasicSetting& flag(std::string name, FlagKind kind = FlagKind::Value) {
         flags.push_back({std::move(name), kind});
         return *this;
     }
-    Setting& shows(std::string text) {  // the default as the docs and --help say it
+    BasicSetting& shows(std::string text) {  // the default as the docs and --help say it
         default_text = std::move(text);
         return *this;
     }
-    Setting& range_is(std::string text) {
+    BasicSetting& range_is(std::string text) {
         range = std::move(text);
         return *this;
     }
-    Setting& json(std::function<void(const Shot&, nlohmann::ordered_json&)> writer) {
+    BasicSetting& json(std::function<void(const Root&, nlohmann::ordered_json&)> writer) {
         write = std::move(writer);
         return *this;
     }
     // In the JSON only when not the default.
-    Setting& json_unless_default() {
-        write = [w = write, d = is_default](const Shot& s, nlohmann::ordered_json& j) {
+    BasicSetting& json_unless_default() {
+        write = [w = write, d = is_default](const Root& s, nlohmann::ordered_json& j) {
             if (!d(s)) w(s, j);
         };
         return *this;
     }
 };
+
+using Setting = BasicSetting<Shot>;
 
 struct SettingsSection {
     std::string name;  // "simulate"
@@ -83,6 +88,12 @@ struct SettingsSection {
     // Writes what read_extra reads, after the table's keys.
     std::function<void(const Shot&, nlohmann::ordered_json&)> write_extra;
 };
+
+// The keys of one entry of [[scene.colliders]] and [[scene.kinematic]] (read by
+// core/shot_scene.cpp, which adds the checks that join keys: a key the shape does not use,
+// keys with velocity).
+const std::vector<BasicSetting<ColliderSettings>>& collider_settings();
+const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings();
 
 // The sections in shot-file order: mesh, generate, prescore, scene, object, material, simulate,
 // render.
@@ -110,10 +121,11 @@ void apply_flag(const SettingsSection& section, const Setting& setting, const Fl
 // takes them): the stage commands' --set without --shot.
 Shot shot_from_overrides(const std::vector<std::string>& overrides);
 
-// The Markdown table of a section (| key | unit | default | range | flag | meaning |).
-std::string settings_markdown(const SettingsSection& section);
+// The Markdown table (| key | unit | default | range | flag | meaning |) of a section ("simulate")
+// or an array of tables ("scene.colliders"). Throws std::runtime_error on an unknown name.
+std::string settings_markdown(const std::string& name);
 // `doc` with the text between each "<!-- settings:NAME -->" and "<!-- /settings:NAME -->"
-// replaced by settings_markdown of section NAME. Throws std::runtime_error on an unknown NAME.
+// replaced by settings_markdown(NAME).
 std::string update_settings_docs(const std::string& doc);
 
 // A number as the docs write it: 0.5, 3600, 1e-6, 1e10.

@@ -14,7 +14,7 @@ Setting colour(const char* key, std::array<float, 3> RenderSettings::*member, co
     return custom(key, "sRGB", "", "#rrggbb", help, [key, member](TomlSection& s, Shot& shot) {
                read_srgb_colour(s, key, shot.render.*member);
            })
-        .shows(fmt::format("\"{}\"", srgb_hex(defaults().render.*member)))
+        .shows(fmt::format("\"{}\"", srgb_hex(defaults<Shot>().render.*member)))
         .json([key, member](const Shot& s, ojson& j) { j[key] = srgb_hex(s.render.*member); });
 }
 

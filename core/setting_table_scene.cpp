@@ -24,7 +24,90 @@ void read_duration(TomlSection& s, Shot& shot) {
     }
 }
 
+// The keys every body of the scene has, between its shape keys and its colour.
+template <class Root>
+std::vector<BasicSetting<Root>> pose_settings() {
+    return {vec3<Root>("position", "m", at(&Root::pose, &Pose::position), kPositionLimits, "[0, 1, 0]",
+                       "the shape's centre (plane: a point on it)"),
+            vec3<Root>("rotation", "degrees", at(&Root::pose, &Pose::rotation_deg), kRotationLimits, "[0, 45, 0]",
+                       "the shape's orientation (plane: its normal is the rotation of +Y)")};
+}
+
+template <class Root>
+std::vector<BasicSetting<Root>> surface_settings() {
+    return {number<Root>("friction", "1", at(&Root::surface, &SurfaceSettings::friction), kFrictionLimits,
+                         "Coulomb friction coefficient"),
+            number<Root>("restitution", "1", at(&Root::surface, &SurfaceSettings::restitution), kRestitutionLimits,
+                         "bounciness")};
+}
+
+template <class Root>
+BasicSetting<Root> name_setting() {
+    return custom<Root>("name", "", "\"\"", "", "a name for messages and render",
+                        [](TomlSection& s, Root& r) { s.text("name", r.name); });
+}
+
+template <class Root>
+std::vector<BasicSetting<Root>> joined(std::vector<std::vector<BasicSetting<Root>>> parts) {
+    std::vector<BasicSetting<Root>> out;
+    for (auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+    return out;
+}
+
 }  // namespace
+
+}  // namespace shatter::table
+
+namespace shatter {
+
+using namespace table;
+
+const std::vector<BasicSetting<ColliderSettings>>& collider_settings() {
+    using C = ColliderSettings;
+    static const std::vector<BasicSetting<C>> settings = joined<C>(
+        {{name_setting<C>(),
+          choice<ShapeKind, C>("shape", at(&C::shape, &ShapeSettings::kind),
+                               {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}, {"plane", ShapeKind::Plane},
+                                {"mesh", ShapeKind::Mesh}},
+                               "the collider's shape"),
+          vec3<C>("size", "m", at(&C::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
+                  "box: full extents along its own axes"),
+          number<C>("radius", "m", at(&C::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius"),
+          custom<C>("mesh", "", "(required for mesh)", "",
+                    "mesh: the mesh file, relative to the shot file's folder",
+                    [](TomlSection& s, C& c) { s.text("mesh", c.shape.mesh); }),
+          number<C>("mesh_scale", "m per mesh unit", at(&C::shape, &ShapeSettings::mesh_scale), kScaleLimits,
+                    "mesh: multiplies every coordinate")},
+         pose_settings<C>(),
+         surface_settings<C>(),
+         {linear_colour<C>(&C::colour, "colour in render")}});
+    return settings;
+}
+
+const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings() {
+    using K = KinematicSettings;
+    static const std::vector<BasicSetting<K>> settings = joined<K>(
+        {{name_setting<K>(),
+          choice<ShapeKind, K>("shape", at(&K::shape, &ShapeSettings::kind),
+                               {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}}, "the body's shape"),
+          vec3<K>("size", "m", at(&K::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
+                  "box: full extents along its own axes"),
+          number<K>("radius", "m", at(&K::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius")},
+         pose_settings<K>(),
+         {vec3<K>("velocity", "m/s", at(&K::velocity), kVelocityLimits, "[1, 0, 0]",
+                  "constant velocity: the position at time t is position + velocity t"),
+          custom<K>("keys", "s, m", "(none)", "t 0 to 3600, strictly increasing; x, y, z -1e6 to 1e6",
+                    "`[[t, x, y, z], ...]`: positions at times, linear in between, the first held before and the "
+                    "last after; replaces `position` and `velocity`",
+                    [](TomlSection& s, K& k) { read_keys(s, k.keys); })},
+         surface_settings<K>(),
+         {linear_colour<K>(&K::colour, "colour in render")}});
+    return settings;
+}
+
+}  // namespace shatter
+
+namespace shatter::table {
 
 SettingsSection scene_section() {
     return {"scene",

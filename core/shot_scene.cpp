@@ -9,15 +9,13 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/setting_table.h"
 #include "core/shot_sections.h"
 
 namespace shatter {
 
 namespace {
 
-constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
-constexpr Limits kRadiusLimits{1e-6, 1e6, "m"};
-constexpr Limits kColourLimits{0, 1, "(linear RGB)"};
 constexpr Limits kPieceIndexLimits{0, 1e9, "(piece index)"};
 constexpr Limits kKeyTimeLimits{0, 3600, "s"};
 
@@ -35,7 +33,7 @@ bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limit
         const std::string name = fmt::format("{}[{}]", s.key_name(key), i);
         auto v = e.value<double>();
         if (!v) s.fail(&e, name + " is not a number", fmt::format("write e.g. {} = {}", key, example));
-        check_limits(s.where(&e), name, *v, limits, false);
+        check_limits(s.where(&e), name, *v, limits, s.from_flag());
         values[i] = *v;
     }
     std::copy(values.begin(), values.end(), out);
@@ -44,30 +42,6 @@ bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limit
 
 bool vec3(TomlSection& s, const char* key, Vec3& out, const Limits& limits, const char* example) {
     return numbers(s, key, out.data(), 3, limits, example);
-}
-
-bool colour(TomlSection& s, std::array<float, 3>& out) {
-    Vec3 c;
-    if (!vec3(s, "colour", c, kColourLimits, "[0.8, 0.2, 0.1]")) return false;
-    out = {static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())};
-    return true;
-}
-
-// A string key that must be one of `choices`.
-template <class T>
-void choice(TomlSection& s, const char* key, T& out, const std::vector<std::pair<const char*, T>>& choices) {
-    std::string text;
-    if (!s.text(key, text)) return;
-    std::vector<std::string> names;
-    for (const auto& [name, value] : choices) {
-        if (text == name) {
-            out = value;
-            return;
-        }
-        names.push_back(fmt::format("\"{}\"", name));
-    }
-    s.fail(s.node(key), fmt::format("{} = \"{}\" is not one of {}", s.key_name(key), text, fmt::join(names, ", ")),
-           fmt::format("use {}", fmt::join(names, " or ")));
 }
 
 std::string beside_shot(const std::string& path, const std::string& shot_path) {
@@ -83,22 +57,16 @@ void refuse_for_shape(TomlSection& s, bool given, const char* key, ShapeKind kin
            fmt::format("remove {} or choose the shape it belongs to (docs/shot.md)", key));
 }
 
-void read_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_path, bool kinematic) {
-    if (kinematic)
-        choice<ShapeKind>(s, "shape", shape.kind, {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}});
-    else
-        choice<ShapeKind>(s, "shape", shape.kind,
-                          {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}, {"plane", ShapeKind::Plane},
-                           {"mesh", ShapeKind::Mesh}});
-    const bool size = vec3(s, "size", shape.size, kSizeLimits, "[1, 0.1, 1]");
-    const bool radius = s.number("radius", shape.radius, kRadiusLimits);
-    const bool mesh = !kinematic && s.text("mesh", shape.mesh);
-    const bool mesh_scale = !kinematic && s.number("mesh_scale", shape.mesh_scale, kScaleLimits);
+// After the table's keys (core/setting_table_scene.cpp): refuses a key the shape does not use
+// and resolves a mesh collider's file.
+void check_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_path, bool kinematic) {
     const ShapeKind k = shape.kind;
-    refuse_for_shape(s, size && k != ShapeKind::Box, "size", k);
-    refuse_for_shape(s, radius && k != ShapeKind::Sphere, "radius", k);
+    refuse_for_shape(s, s.node("size") && k != ShapeKind::Box, "size", k);
+    refuse_for_shape(s, s.node("radius") && k != ShapeKind::Sphere, "radius", k);
+    if (kinematic) return;  // mesh and mesh_scale are unknown keys there
+    const bool mesh = s.node("mesh");
     refuse_for_shape(s, mesh && k != ShapeKind::Mesh, "mesh", k);
-    refuse_for_shape(s, mesh_scale && k != ShapeKind::Mesh, "mesh_scale", k);
+    refuse_for_shape(s, s.node("mesh_scale") && k != ShapeKind::Mesh, "mesh_scale", k);
     if (k == ShapeKind::Mesh) {
         if (shape.mesh.empty())
             s.fail(mesh ? s.node("mesh") : s.node("shape"),
@@ -108,24 +76,13 @@ void read_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_pa
     }
 }
 
-void read_pose(TomlSection& s, Pose& pose) {
-    vec3(s, "position", pose.position, kPositionLimits, "[0, 1, 0]");
-    vec3(s, "rotation", pose.rotation_deg, kRotationLimits, "[0, 45, 0]");
-}
-
-void read_surface(TomlSection& s, SurfaceSettings& surface) {
-    s.number("friction", surface.friction, kFrictionLimits);
-    s.number("restitution", surface.restitution, kRestitutionLimits);
-}
-
 void read_collider(TomlSection& s, ColliderSettings& c, const std::string& shot_path) {
-    s.text("name", c.name);
-    read_shape(s, c.shape, shot_path, false);
-    read_pose(s, c.pose);
-    read_surface(s, c.surface);
-    colour(s, c.colour);
+    for (const auto& setting : collider_settings()) setting.read(s, c);
+    check_shape(s, c.shape, shot_path, false);
     s.finish();
 }
+
+}  // namespace
 
 // keys = [[t, x, y, z], ...]: times in seconds, strictly increasing.
 void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
@@ -155,21 +112,18 @@ void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
     }
 }
 
+namespace {
+
 void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& shot_path) {
-    s.text("name", k.name);
-    read_shape(s, k.shape, shot_path, true);
-    read_pose(s, k.pose);
-    const bool velocity = vec3(s, "velocity", k.velocity, kVelocityLimits, "[1, 0, 0]");
-    read_keys(s, k.keys);
+    for (const auto& setting : kinematic_settings()) setting.read(s, k);
+    check_shape(s, k.shape, shot_path, true);
     if (!k.keys.empty()) {
-        const char* clash = velocity ? "velocity" : s.node("position") ? "position" : nullptr;
+        const char* clash = s.node("velocity") ? "velocity" : s.node("position") ? "position" : nullptr;
         if (clash)
             s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name(clash)),
                    "keep one: keys for a path, or position and velocity for constant motion");
         k.pose.position = k.keys.front().position;  // the pose at t = 0 (held before the first key)
     }
-    read_surface(s, k.surface);
-    colour(s, k.colour);
     s.finish();
 }
 

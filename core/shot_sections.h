@@ -21,6 +21,8 @@ inline constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
 // [[scene.colliders]] and [[scene.kinematic]] (core/shot_scene.cpp); mesh files are taken
 // relative to `shot_path`'s folder.
 void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path);
+// keys = [[t, x, y, z], ...] of a kinematic body or a driven piece (core/shot_scene.cpp).
+void read_keys(TomlSection& s, std::vector<KeyFrame>& keys);
 // [[object.driven]] (core/shot_scene.cpp).
 void read_object_driven(TomlSection& s, ObjectSettings& object);
 // Their JSON, after the section's keys: "colliders" and "kinematic", "driven"
