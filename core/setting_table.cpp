@@ -86,6 +86,7 @@ std::string markdown(const std::vector<BasicSetting<Root>>& settings) {
 std::string settings_markdown(const std::string& name) {
     if (name == "scene.colliders") return markdown(collider_settings());
     if (name == "scene.kinematic") return markdown(kinematic_settings());
+    if (name == "object.driven") return markdown(driven_settings());
     const SettingsSection* section = find_settings_section(name);
     if (!section) throw std::runtime_error("no settings section '" + name + "'");
     return markdown(section->settings);

@@ -94,6 +94,9 @@ struct SettingsSection {
 // keys with velocity).
 const std::vector<BasicSetting<ColliderSettings>>& collider_settings();
 const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings();
+// The keys of one [[object.driven]] entry (core/shot_scene.cpp adds: keys or velocity, not
+// both, and no motion for a fixed piece).
+const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings();
 
 // The sections in shot-file order: mesh, generate, prescore, scene, object, material, simulate,
 // render.

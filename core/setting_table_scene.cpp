@@ -105,6 +105,22 @@ const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings() {
     return settings;
 }
 
+const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings() {
+    using D = PieceDriveSettings;
+    static const std::vector<BasicSetting<D>> settings = {
+        whole<D>("piece", "", at(&D::piece), Limits{0, 1e9, "(piece index)"},
+                 "which piece (`shatter info MODEL` lists them)")
+            .shows("(required)")
+            .range_is("a piece index of the model"),
+        boolean<D>("fixed", at(&D::fixed), "true: never moves"),
+        vec3<D>("velocity", "m/s", at(&D::velocity), kVelocityLimits, "[0.05, 0, 0]",
+                "constant velocity (not with keys)"),
+        custom<D>("keys", "[s, m, m, m]", "none", "times increasing",
+                  "offsets from the start position at times, linear between, held after the last",
+                  [](TomlSection& s, D& d) { read_keys(s, d.keys); })};
+    return settings;
+}
+
 }  // namespace shatter
 
 namespace shatter::table {

@@ -16,7 +16,6 @@ namespace shatter {
 
 namespace {
 
-constexpr Limits kPieceIndexLimits{0, 1e9, "(piece index)"};
 constexpr Limits kKeyTimeLimits{0, 3600, "s"};
 
 // An array of `n` numbers, each within `limits`; `example` is a valid value for the fix.
@@ -129,10 +128,8 @@ void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& sho
 
 // [[object.driven]]: a piece the scene moves (kinematic) or holds (fixed = true).
 void read_drive(TomlSection& s, PieceDriveSettings& d, const std::string&) {
-    s.integer("piece", d.piece, kPieceIndexLimits);
-    s.boolean("fixed", d.fixed);
-    const bool moving = vec3(s, "velocity", d.velocity, kVelocityLimits, "[0.05, 0, 0]");
-    read_keys(s, d.keys);
+    for (const auto& setting : driven_settings()) setting.read(s, d);
+    const bool moving = s.node("velocity");
     if (!d.keys.empty() && moving)
         s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name("velocity")),
                "keep one: keys (offsets from the start at times) or a constant velocity");
