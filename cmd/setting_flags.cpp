@@ -37,11 +37,12 @@ SettingFlags::SettingFlags(CLI::App& command, std::string name, std::vector<std:
     for (const std::string& s : sections_) listed.push_back("[" + s + "]");
     command.add_option("--set", sets_,
                        fmt::format("set a shot setting of {}, SECTION.KEY=VALUE, written as in the shot file "
-                                   "(repeatable; docs/shot.md), e.g. --set {}; after --shot, before the flags below",
+                                   "(repeatable; docs/shot.md), e.g. --set {}; applied after the shot file, before the flags below",
                                    fmt::join(listed, ", "),
                                    sections_.front() == "mesh" ? "prescore.pieces=6"
                                    : sections_.front() == "render" ? "render.fov=30" : "material.alpha=2"))
-        ->allow_extra_args(false);
+        ->allow_extra_args(false)
+        ->type_name("SECTION.KEY=VALUE");
     for (const std::string& section_name : sections_) {
         const SettingsSection* section = find_settings_section(section_name);
         for (const Setting& setting : section->settings)
@@ -49,8 +50,10 @@ SettingFlags::SettingFlags(CLI::App& command, std::string name, std::vector<std:
                 Alias& a = aliases_.emplace_back(Alias{section, &setting, &alias, "", false});
                 const std::string help = alias_help(*section, setting, alias);
                 if (alias.kind == FlagKind::Value)
-                    command.add_option_function<std::string>(
-                        alias.name, [&a](const std::string& v) { a.value = v, a.given = true; }, help);
+                    command
+                        .add_option_function<std::string>(
+                            alias.name, [&a](const std::string& v) { a.value = v, a.given = true; }, help)
+                        ->type_name("VALUE");
                 else
                     command.add_flag_function(alias.name, [&a](int64_t) { a.given = true; }, help);
             }

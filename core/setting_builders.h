@@ -3,7 +3,9 @@
 // help, and fills the default and range columns from them.
 //
 //   at(&Shot::material, &MaterialSettings::alpha)    the field a setting reads into
-//   number / whole / seed / boolean / choice / optional_number / vec3 / custom
+//   number / whole / seed / boolean / choice / optional_number / vec3 / linear_colour / custom
+// A builder's Root is the Shot for a section's table, an entry's struct for an array of tables
+// (number<ColliderSettings>(...)).
 #pragma once
 
 #include <optional>
