@@ -23,15 +23,7 @@ RunCommand add_simulate_command(CLI::App& root);
 RunCommand add_run_command(CLI::App& root);
 RunCommand add_batch_command(CLI::App& root);
 RunCommand add_submit_command(CLI::App& root);
-
-// Sets `field` from a flag that was given, after checking it against its limits (a Usage error
-// naming the flag otherwise).
-template <typename T>
-void override_checked(T& field, const std::optional<T>& flag, const char* name, const Limits& limits) {
-    if (!flag) return;
-    check_limits(name, name, static_cast<double>(*flag), limits, true);
-    field = *flag;
-}
+RunCommand add_settings_doc_command(CLI::App& root);
 
 // "DESCRIPTION (unit: UNIT, default: DEFAULT)" for --help texts.
 std::string option_help(const std::string& description, const std::string& unit, const std::string& def);

@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
     add(add_run_command);
     add(add_batch_command);
     add(add_submit_command);
+    add(add_settings_doc_command);
 
     try {
         app.parse(argc, argv);

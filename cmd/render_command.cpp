@@ -1,11 +1,13 @@
-// shatter render MODEL TRAJECTORY -o FRAMES/ [--shot SHOT] [--size 1280x720] [--frames A:B] ...
+// shatter render MODEL TRAJECTORY -o FRAMES/ [--shot SHOT] [--set render.KEY=VALUE]... [--size 1280x720] [--frames A:B] ...
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include <fmt/format.h>
 
 #include "cmd/command.h"
+#include "cmd/setting_flags.h"
 #include "core/error.h"
 #include "core/model_io.h"
 #include "core/shot.h"
@@ -18,10 +20,8 @@ namespace {
 
 struct RenderFlags {
     std::string model, trajectory, output, shot;
-    std::optional<std::string> size, frames, camera, camera_position, camera_target, colour_mode, material_colour, background;
-    std::optional<double> fov, key_azimuth, key_elevation, fracture_tint, cavity_shade;
-    std::optional<uint32_t> msaa, shadow_map;
-    bool no_shadows = false;
+    std::optional<std::string> size, frames, camera_position, camera_target;
+    std::unique_ptr<SettingFlags> settings;
 };
 
 [[noreturn]] void bad_flag(const std::string& flag, const std::string& value, const std::string& problem,
@@ -70,14 +70,11 @@ Vec3 parse_point(const char* flag, const std::string& text) {
     return Vec3(x, y, z);
 }
 
-std::array<float, 3> parse_colour(const char* flag, const std::string& text) {
-    auto c = parse_srgb_hex(text);
-    if (!c) bad_flag(flag, text, "not a colour", "write an sRGB colour as #rrggbb, e.g. #dbd3c4");
-    return *c;
-}
-
 RenderSettings settings_from(const RenderFlags& f) {
-    RenderSettings s = f.shot.empty() ? RenderSettings{} : load_shot(f.shot).render;
+    const std::vector<std::string>& sets = f.settings->overrides();
+    Shot shot = f.shot.empty() ? shot_from_overrides(sets) : load_shot(f.shot, sets);
+    f.settings->apply(shot);
+    RenderSettings s = shot.render;
     if (f.size) parse_size(*f.size, s);
     if (f.camera_position) s.camera_position = parse_point("--camera-position", *f.camera_position);
     if (f.camera_target) {
@@ -85,21 +82,6 @@ RenderSettings settings_from(const RenderFlags& f) {
                                          "also give --camera-position X,Y,Z");
         s.camera_target = parse_point("--camera-target", *f.camera_target);
     }
-    override_checked(s.fov, f.fov, "--fov", kFovLimits);
-    override_checked(s.key_azimuth, f.key_azimuth, "--key-azimuth", kAzimuthLimits);
-    override_checked(s.key_elevation, f.key_elevation, "--key-elevation", kElevationLimits);
-    override_checked(s.fracture_tint, f.fracture_tint, "--fracture-tint", kTintLimits);
-    override_checked(s.cavity_shade, f.cavity_shade, "--cavity-shade", kTintLimits);
-    override_checked(s.shadow_map, f.shadow_map, "--shadow-map", kShadowMapLimits);
-    if (f.msaa) {
-        check_msaa("--msaa", *f.msaa, true);
-        s.msaa = *f.msaa;
-    }
-    if (f.no_shadows) s.shadows = false;
-    if (f.colour_mode) s.colour_mode = *parse_colour_mode(*f.colour_mode);
-    if (f.camera) s.camera = *parse_camera_mode(*f.camera);
-    if (f.material_colour) s.material_colour = parse_colour("--material-colour", *f.material_colour);
-    if (f.background) s.background = parse_colour("--background", *f.background);
     return s;
 }
 
@@ -138,35 +120,11 @@ RunCommand add_render_command(CLI::App& root) {
     c->add_option("--frames", f->frames, option_help("render frames A to B-1 only (A:B, A:, :B), e.g. to spread a "
                                                      "render over processes; a frame's bytes do not depend on it",
                                                      "frame numbers from 0", "all"));
-    c->add_option("--camera", f->camera,
-                  option_help("without --camera-position: follow the pieces, or frame the whole animation", "",
-                              to_string(d.camera)))
-        ->check(CLI::IsMember({"follow", "whole"}));
     c->add_option("--camera-position", f->camera_position,
                   option_help("camera position X,Y,Z", "m", "--camera"));
     c->add_option("--camera-target", f->camera_target,
                   option_help("the point the camera looks at X,Y,Z", "m", "the centre of the animation"));
-    c->add_option("--fov", f->fov, option_help("vertical field of view", "degrees", fmt::format("{:g}", d.fov)));
-    c->add_flag("--no-shadows", f->no_shadows, "the key light casts no shadows (faster)");
-    c->add_option("--shadow-map", f->shadow_map,
-                  option_help("shadow map width and height", "texels", std::to_string(d.shadow_map)));
-    c->add_option("--msaa", f->msaa, option_help("samples per pixel: 1 (off), 2 or 4", "", std::to_string(d.msaa)));
-    c->add_option("--key-azimuth", f->key_azimuth,
-                  option_help("key light direction from the camera's, positive to the right", "degrees",
-                              fmt::format("{:g}", d.key_azimuth)));
-    c->add_option("--key-elevation", f->key_elevation,
-                  option_help("key light height above the horizon", "degrees", fmt::format("{:g}", d.key_elevation)));
-    c->add_option("--colour-mode", f->colour_mode,
-                  option_help("pieces: a palette colour per piece; material: --material-colour", "", "pieces"))
-        ->check(CLI::IsMember({"pieces", "material"}));
-    c->add_option("--material-colour", f->material_colour,
-                  option_help("the colour of every piece in material mode (sRGB #rrggbb)", "", srgb_hex(d.material_colour)));
-    c->add_option("--fracture-tint", f->fracture_tint,
-                  option_help("fracture faces: this fraction of the way from the piece colour to white", "fraction",
-                              fmt::format("{:g}", d.fracture_tint)));
-    c->add_option("--cavity-shade", f->cavity_shade,
-                  option_help("cavity faces: the piece colour times this", "fraction", fmt::format("{:g}", d.cavity_shade)));
-    c->add_option("--background", f->background, option_help("background colour (sRGB #rrggbb)", "", srgb_hex(d.background)));
+    f->settings = std::make_unique<SettingFlags>(*c, "render", std::vector<std::string>{"render"});
     return [f] { return run(*f); };
 }
 

@@ -55,9 +55,7 @@ inline constexpr Limits kElevationLimits{1, 90, "degrees"};
 inline constexpr Limits kTintLimits{0, 1, "(fraction)"};
 
 const char* to_string(ColourMode m);
-std::optional<ColourMode> parse_colour_mode(const std::string& text);
 const char* to_string(CameraMode m);
-std::optional<CameraMode> parse_camera_mode(const std::string& text);
 // "#rrggbb" (sRGB) to linear RGB; nullopt when the text is not of that form.
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text);
 std::string srgb_hex(const std::array<float, 3>& linear);

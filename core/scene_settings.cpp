@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/setting_table.h"
+#include "core/shot_sections.h"
 
 namespace shatter {
 
@@ -163,64 +165,44 @@ ojson kinematic_json(const KinematicSettings& k) {
 
 }  // namespace
 
-ojson to_json(const SceneSettings& s) {
-    ojson j = ojson::object();
-    j["gravity"] = vec_json(s.gravity);
-    j["ground"] = s.ground;
-    j["ground_height"] = s.ground_height;
-    j["ground_friction"] = s.ground_surface.friction;
-    j["ground_restitution"] = s.ground_surface.restitution;
+void put_scene_arrays(const SceneSettings& s, ojson& j) {
     j["colliders"] = ojson::array();
     for (const ColliderSettings& c : s.colliders) j["colliders"].push_back(collider_json(c));
     j["kinematic"] = ojson::array();
     for (const KinematicSettings& k : s.kinematic) j["kinematic"].push_back(kinematic_json(k));
-    return j;
 }
 
-ojson to_json(const ObjectSettings& s) {
-    ojson j = ojson::object();
-    put_pose(j, s.pose);
-    j["velocity"] = vec_json(s.velocity);
-    j["angular_velocity"] = vec_json(s.angular_velocity);
+void put_object_driven(const ObjectSettings& s, ojson& j) {
     ojson driven = ojson::array();
     for (const PieceDriveSettings& d : s.driven)
         driven.push_back({{"piece", d.piece}, {"fixed", d.fixed}, {"velocity", vec_json(d.velocity)}, {"keys", keys_json(d.keys)}});
     j["driven"] = std::move(driven);
-    return j;
+}
+
+// The sections' keys come from their tables (core/setting_table_scene.cpp), in the order files
+// already written have them.
+ojson to_json(const SceneSettings& s) {
+    Shot shot;
+    shot.scene = s;
+    return settings_json("scene", shot);
+}
+
+ojson to_json(const ObjectSettings& s) {
+    Shot shot;
+    shot.object = s;
+    return settings_json("object", shot);
 }
 
 ojson to_json(const MaterialSettings& s) {
-    ojson j = ojson::object();
-    j["density"] = s.density ? ojson(*s.density) : ojson(nullptr);  // null: the model's density
-    j["stiffness"] = s.stiffness;
-    j["damping"] = s.damping;
-    j["strength"] = s.strength;
-    j["alpha"] = s.alpha;
-    put_surface(j, s.surface);
-    if (s.stiffen) j["stiffen"] = true;  // only when on: trajectories made without it keep their bytes
-    return j;
+    Shot shot;
+    shot.material = s;
+    return settings_json("material", shot);
 }
 
 ojson to_json(const SimulateSettings& s) {
-    ojson j = {{"duration", s.duration},
-               {"fps", s.fps},
-               {"substeps", s.substeps},
-               {"iterations", s.iterations},
-               {"energy_split", to_string(s.energy_split)},
-               {"directions", to_string(s.directions)},
-               {"rate_limit", s.rate_limit},
-               {"rollback", s.rollback},
-               {"exact_energy", s.exact_energy},
-               {"seed", s.seed},
-            {"max_cfm", s.max_cfm}};
-    // Only when not the default, so that trajectories made before the key existed keep their bytes.
-    if (s.break_criterion != BreakCriterion::Force) j["break_criterion"] = to_string(s.break_criterion);
-    if (s.on_instability != InstabilityMode::Stop) j["on_instability"] = to_string(s.on_instability);
-    if (s.auto_duration) {
-        j["duration"] = "auto";
-        j["max_duration"] = s.max_duration;
-    }
-    return j;
+    Shot shot;
+    shot.simulate = s;
+    return settings_json("simulate", shot);
 }
 
 // ---- scene_from_json ---------------------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/setting_table.h"
 
 namespace shatter {
 
@@ -37,13 +38,6 @@ const char* to_string(RepairMode mode) {
     return "?";
 }
 
-std::optional<RepairMode> parse_repair_mode(const std::string& text) {
-    if (text == "auto") return RepairMode::Auto;
-    if (text == "always") return RepairMode::Always;
-    if (text == "never") return RepairMode::Never;
-    return std::nullopt;
-}
-
 void check_limits(const std::string& where, const std::string& key, double value, const Limits& limits,
                   bool from_flag) {
     if (std::isfinite(value) && value >= limits.min && value <= limits.max) return;
@@ -72,28 +66,19 @@ void check_collision_tolerance(const std::string& where, const Length& tolerance
                  kCollisionToleranceAbsoluteLimits, from_flag);
 }
 
+// The keys come from the tables (core/setting_table_prescore.cpp), in the order files already
+// written have them; "size" and "adapt" appear only when they differ from the defaults, so that
+// a model made with a given scale keeps the bytes it had before they existed.
 nlohmann::ordered_json to_json(const MeshSettings& s) {
-    // "size" and "adapt" appear only when they differ from the defaults, so that a model made
-    // with a given scale keeps the bytes it had before they existed.
-    nlohmann::ordered_json j = {{"path", s.path}};
-    j["scale"] = s.scale ? nlohmann::ordered_json(*s.scale) : nlohmann::ordered_json("auto");
-    if (s.size) j["size"] = *s.size;
-    j["repair"] = to_string(s.repair);
-    j["wrap_alpha"] = s.wrap_alpha;
-    j["wrap_offset"] = s.wrap_offset;
-    if (!s.adapt) j["adapt"] = false;
-    return j;
+    Shot shot;
+    shot.mesh = s;
+    return settings_json("mesh", shot);
 }
 
 nlohmann::ordered_json to_json(const PrescoreSettings& s) {
-    return {{"pieces", s.pieces},
-            {"seed", s.seed},
-            {"hollow", s.hollow ? nlohmann::ordered_json(s.hollow->str()) : nlohmann::ordered_json("solid")},
-            {"resolution", s.resolution},
-            {"density", s.density},
-            {"collision_tolerance", s.collision_tolerance.str()},
-            {"collision_max_parts", s.collision_max_parts},
-            {"constraints_per_pair", s.constraints_per_pair}};
+    Shot shot;
+    shot.prescore = s;
+    return settings_json("prescore", shot);
 }
 
 }  // namespace shatter

@@ -33,7 +33,6 @@ struct Length {
 
 enum class RepairMode { Auto, Always, Never };
 const char* to_string(RepairMode mode);
-std::optional<RepairMode> parse_repair_mode(const std::string& text);
 
 // How big the object is: `size` (its longest bounding-box side) wins over `scale`; with neither,
 // the file's own units (glTF: metres; FBX, Collada: their unit scale), and for a file without

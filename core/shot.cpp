@@ -5,80 +5,22 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "core/shot_sections.h"
+#include "core/setting_table.h"
 #include "core/toml_reader.h"
 
 namespace shatter {
 
-namespace {
-
-void read_mesh(TomlSection& s, MeshSettings& mesh, const std::string& shot_path) {
-    if (s.text("path", mesh.path) && !mesh.path.empty()) {
-        std::filesystem::path p(mesh.path);
-        if (p.is_relative()) mesh.path = (std::filesystem::path(shot_path).parent_path() / p).lexically_normal().string();
+toml::table parse_override_value(const std::string& value, const std::string& where) {
+    try {
+        return toml::parse("v = " + value, where);
+    } catch (const toml::parse_error&) {
+        // A bare word (e.g. --set mesh.repair=never) is a string.
+        if (value.empty() || value.find_first_of("\"'[]{}=\n") != std::string::npos)
+            throw Error(ExitCode::Usage, fmt::format("{}: '{}' is not a value (fix: write a number, true/false, "
+                                                     "a \"string\" or an [array] as in the shot file)", where, value));
+        return toml::parse("v = \"" + value + "\"", where);
     }
-    double number = 0;
-    if (s.number("scale", number, kScaleLimits)) mesh.scale = number;
-    if (s.number("size", number, kSizeLimits)) mesh.size = number;
-    s.boolean("adapt", mesh.adapt);
-    std::string repair;
-    if (s.text("repair", repair)) {
-        auto mode = parse_repair_mode(repair);
-        if (!mode) s.fail(s.node("repair"), fmt::format("mesh.repair = \"{}\" is not a repair mode", repair),
-                          "use \"auto\", \"always\" or \"never\"");
-        mesh.repair = *mode;
-    }
-    s.number("wrap_alpha", mesh.wrap_alpha, kWrapAlphaLimits);
-    s.number("wrap_offset", mesh.wrap_offset, kWrapOffsetLimits);
-    s.finish();
 }
-
-// A Length key: a number (fraction of the diagonal) or a string with a unit.
-void read_length(TomlSection& s, const char* key, Length& out,
-                 void (*check)(const std::string&, const Length&, bool), const std::string& also = "") {
-    const toml::node* n = s.node(key);
-    if (!n) return;
-    const std::string fix = fmt::format("write {} = 0.01 (fraction of the diagonal) or {} = \"2mm\"{}", key, key, also);
-    if (auto v = n->value<double>()) {
-        out = Length{*v, true};
-    } else if (auto len = n->is_string() ? Length::parse(n->as_string()->get()) : std::nullopt) {
-        out = *len;
-    } else {
-        const std::string value = n->is_string() ? fmt::format(" = \"{}\"", n->as_string()->get()) : "";
-        s.fail(n, fmt::format("{}{} is not a length", s.key_name(key), value), fix);
-    }
-    check(s.where(n), out, false);
-}
-
-// hollow: a length, or false for solid.
-void read_hollow(TomlSection& s, PrescoreSettings& p) {
-    const toml::node* n = s.node("hollow");
-    if (!n) return;
-    if (n->is_boolean()) {
-        if (n->as_boolean()->get())
-            s.fail(n, "prescore.hollow = true does not say how thick the shell is",
-                   "write hollow = 0.05 (fraction of the diagonal), hollow = \"12mm\", or hollow = false (solid)");
-        p.hollow.reset();
-        return;
-    }
-    Length thickness;
-    read_length(s, "hollow", thickness, check_hollow, ", or hollow = false (solid)");
-    p.hollow = thickness;
-}
-
-void read_prescore(TomlSection& s, PrescoreSettings& p) {
-    s.integer("pieces", p.pieces, kPiecesLimits);
-    s.integer("seed", p.seed);
-    read_hollow(s, p);
-    s.number("resolution", p.resolution, kResolutionLimits);
-    s.number("density", p.density, kDensityLimits);
-    read_length(s, "collision_tolerance", p.collision_tolerance, check_collision_tolerance);
-    s.integer("collision_max_parts", p.collision_max_parts, kCollisionPartsLimits);
-    s.integer("constraints_per_pair", p.constraints_per_pair, kConstraintsPerPairLimits);
-    s.finish();
-}
-
-}  // namespace
 
 bool is_shot_path(const std::string& path) { return std::filesystem::path(path).extension() == ".toml"; }
 
@@ -91,17 +33,7 @@ void apply_shot_overrides(toml::table& root, const std::vector<std::string>& ove
         if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == key.size())
             throw Error(ExitCode::Usage, fmt::format("{}: not SECTION.KEY=VALUE (fix: e.g. --set material.alpha=0.5; "
                                                      "the sections and keys are in docs/shot.md)", where));
-        const std::string value = o.substr(eq + 1);
-        toml::table parsed;
-        try {
-            parsed = toml::parse("v = " + value, where);
-        } catch (const toml::parse_error&) {
-            // A bare word (e.g. --set mesh.repair=never) is a string.
-            if (value.empty() || value.find_first_of("\"'[]{}=\n") != std::string::npos)
-                throw Error(ExitCode::Usage, fmt::format("{}: '{}' is not a value (fix: write a number, true/false, "
-                                                         "a \"string\" or an [array] as in the shot file)", where, value));
-            parsed = toml::parse("v = \"" + value + "\"", where);
-        }
+        toml::table parsed = parse_override_value(o.substr(eq + 1), where);
         // Walk (and create) the tables of the dotted section name, then set the key.
         toml::table* table = &root;
         size_t start = 0;
@@ -132,30 +64,28 @@ Shot read_shot(toml::table& root, const std::string& path, const std::vector<std
         if (n && !n->is_table()) top.fail(n, fmt::format("'{}' must be a table: [{}]", name, name), "see docs/shot.md");
         return n ? n->as_table() : nullptr;
     };
-    auto read = [&](const char* name, auto reader) {
-        if (const toml::table* t = section(name)) {
-            TomlSection s(*t, path, name);
-            reader(s);
+    for (const SettingsSection& settings : shot_settings()) {
+        const toml::table* t = section(settings.name.c_str());
+        if (!t) continue;
+        TomlSection s(*t, path, settings.name);
+        if (settings.name == "generate") {
+            if (root.get("mesh"))
+                s.fail(nullptr, "the shot has both [mesh] and [generate]",
+                       "keep [mesh] (fracture a mesh file) or [generate] (a beam, plate or chain built from boxes)");
+            shot.generate.emplace();
         }
-    };
-    read("mesh", [&](TomlSection& s) { read_mesh(s, shot.mesh, path); });
-    read("generate", [&](TomlSection& s) {
-        if (root.get("mesh"))
-            s.fail(nullptr, "the shot has both [mesh] and [generate]",
-                   "keep [mesh] (fracture a mesh file) or [generate] (a beam, plate or chain built from boxes)");
-        read_generate_section(s, shot.generate.emplace());
-    });
-    read("prescore", [&](TomlSection& s) { read_prescore(s, shot.prescore); });
-    read("scene", [&](TomlSection& s) { read_scene_section(s, shot.scene, path); });
-    read("object", [&](TomlSection& s) { read_object_section(s, shot.object); });
-    read("material", [&](TomlSection& s) { read_material_section(s, shot.material); });
-    read("simulate", [&](TomlSection& s) { read_simulate_section(s, shot.simulate); });
-    read("render", [&](TomlSection& s) { read_render_section(s, shot.render); });
+        read_settings_section(settings, s, shot);
+    }
     top.finish();
     return shot;
 }
 
 }  // namespace
+
+Shot shot_from_overrides(const std::vector<std::string>& overrides) {
+    toml::table root;
+    return read_shot(root, "", overrides);
+}
 
 Shot load_shot(const std::string& path, const std::vector<std::string>& overrides) {
     toml::table root = parse_toml_file(path);

@@ -1,5 +1,6 @@
-// The shot's [render] section and the render settings' JSON (core/render_settings.h). Strict like
-// the other sections: every key is checked against its range, unknown keys are errors.
+// The [render] section's hand-written readers (camera points, sRGB colours, piece_colours; its
+// keys are declared in core/setting_table_render.cpp) and the render settings' JSON
+// (core/render_settings.h).
 #include <cmath>
 #include <cstdio>
 
@@ -7,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/render_settings.h"
+#include "core/setting_table.h"
 #include "core/shot_sections.h"
 
 namespace shatter {
@@ -22,7 +24,9 @@ double linear_to_srgb(double v) {
     return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
 }
 
-bool read_vec3(TomlSection& s, const char* key, std::optional<Vec3>& out) {
+}  // namespace
+
+bool read_render_point(TomlSection& s, const char* key, std::optional<Vec3>& out) {
     const toml::node* n = s.node(key);
     if (!n) return false;
     const auto* a = n->as_array();
@@ -40,7 +44,7 @@ bool read_vec3(TomlSection& s, const char* key, std::optional<Vec3>& out) {
     return true;
 }
 
-void read_colour(TomlSection& s, const char* key, std::array<float, 3>& out) {
+void read_srgb_colour(TomlSection& s, const char* key, std::array<float, 3>& out) {
     std::string text;
     if (!s.text(key, text)) return;
     auto c = parse_srgb_hex(text);
@@ -68,29 +72,24 @@ void read_piece_colours(TomlSection& s, std::vector<std::pair<uint32_t, std::arr
         std::array<float, 3> colour{};
         if (!e.integer("piece", piece, Limits{0, 1e9, "(piece index)"}) || !e.node("colour"))
             s.fail(t, name + " needs both piece and colour", fix);
-        read_colour(e, "colour", colour);
+        read_srgb_colour(e, "colour", colour);
         e.finish();
         out.emplace_back(piece, colour);
     }
 }
 
-}  // namespace
+void check_render_camera(TomlSection& s, const RenderSettings& r) {
+    if (r.camera_target && !r.camera_position)
+        s.fail(s.node("camera_target"), "render.camera_target is set without render.camera_position",
+               "also give camera_position, or remove camera_target to frame the animation automatically");
+    if (r.camera_position && r.camera_target && (*r.camera_position - *r.camera_target).norm() < 1e-6)
+        s.fail(s.node("camera_target"), "render.camera_target equals render.camera_position",
+               "place the camera away from the point it looks at");
+}
 
 const char* to_string(ColourMode m) { return m == ColourMode::Pieces ? "pieces" : "material"; }
 
-std::optional<ColourMode> parse_colour_mode(const std::string& text) {
-    if (text == "pieces") return ColourMode::Pieces;
-    if (text == "material") return ColourMode::Material;
-    return std::nullopt;
-}
-
 const char* to_string(CameraMode m) { return m == CameraMode::Follow ? "follow" : "whole"; }
-
-std::optional<CameraMode> parse_camera_mode(const std::string& text) {
-    if (text == "follow") return CameraMode::Follow;
-    if (text == "whole") return CameraMode::Whole;
-    return std::nullopt;
-}
 
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text) {
     if (text.size() != 7 || text[0] != '#') return std::nullopt;
@@ -120,69 +119,21 @@ void check_msaa(const std::string& where, uint32_t msaa, bool from_flag) {
                 fmt::format("{}: msaa = {} is not a sample count render offers (fix: 1 (off), 2 or 4)", where, msaa));
 }
 
-void read_render_section(TomlSection& s, RenderSettings& r) {
-    s.integer("width", r.width, kImageSizeLimits);
-    s.integer("height", r.height, kImageSizeLimits);
-    read_vec3(s, "camera_position", r.camera_position);
-    read_vec3(s, "camera_target", r.camera_target);
-    if (r.camera_target && !r.camera_position)
-        s.fail(s.node("camera_target"), "render.camera_target is set without render.camera_position",
-               "also give camera_position, or remove camera_target to frame the animation automatically");
-    if (r.camera_position && r.camera_target && (*r.camera_position - *r.camera_target).norm() < 1e-6)
-        s.fail(s.node("camera_target"), "render.camera_target equals render.camera_position",
-               "place the camera away from the point it looks at");
-    std::string camera;
-    if (s.text("camera", camera)) {
-        auto m = parse_camera_mode(camera);
-        if (!m) s.fail(s.node("camera"), fmt::format("render.camera = \"{}\" is not a camera mode", camera),
-                       "use \"follow\" (moves with the pieces) or \"whole\" (fixed, frames the whole animation)");
-        r.camera = *m;
-    }
-    s.number("fov", r.fov, kFovLimits);
-    s.boolean("shadows", r.shadows);
-    s.integer("shadow_map", r.shadow_map, kShadowMapLimits);
-    if (s.integer("msaa", r.msaa, Limits{1, 4, "samples"})) check_msaa(s.where(s.node("msaa")), r.msaa, false);
-    s.number("key_azimuth", r.key_azimuth, kAzimuthLimits);
-    s.number("key_elevation", r.key_elevation, kElevationLimits);
-    std::string mode;
-    if (s.text("colour_mode", mode)) {
-        auto m = parse_colour_mode(mode);
-        if (!m) s.fail(s.node("colour_mode"), fmt::format("render.colour_mode = \"{}\" is not a colour mode", mode),
-                       "use \"pieces\" (palette by piece id) or \"material\" (material_colour)");
-        r.colour_mode = *m;
-    }
-    read_colour(s, "material_colour", r.material_colour);
-    read_piece_colours(s, r.piece_colours);
-    s.number("fracture_tint", r.fracture_tint, kTintLimits);
-    s.number("cavity_shade", r.cavity_shade, kTintLimits);
-    read_colour(s, "background", r.background);
-    s.finish();
+void put_render_point(nlohmann::ordered_json& j, const char* key, const std::optional<Vec3>& point) {
+    if (point) j[key] = {point->x(), point->y(), point->z()};
+}
+
+void put_piece_colours(nlohmann::ordered_json& j, const std::vector<std::pair<uint32_t, std::array<float, 3>>>& pieces) {
+    if (pieces.empty()) return;
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const auto& [piece, colour] : pieces) out.push_back({{"piece", piece}, {"colour", srgb_hex(colour)}});
+    j["piece_colours"] = out;
 }
 
 nlohmann::ordered_json to_json(const RenderSettings& s) {
-    nlohmann::ordered_json j;
-    j["width"] = s.width;
-    j["height"] = s.height;
-    if (s.camera_position) j["camera_position"] = {s.camera_position->x(), s.camera_position->y(), s.camera_position->z()};
-    if (s.camera_target) j["camera_target"] = {s.camera_target->x(), s.camera_target->y(), s.camera_target->z()};
-    if (!s.camera_position) j["camera"] = to_string(s.camera);  // what frames the shot when it places no camera
-    j["fov"] = s.fov;
-    j["shadows"] = s.shadows;
-    j["shadow_map"] = s.shadow_map;
-    j["msaa"] = s.msaa;
-    j["key_azimuth"] = s.key_azimuth;
-    j["key_elevation"] = s.key_elevation;
-    j["colour_mode"] = to_string(s.colour_mode);
-    j["material_colour"] = srgb_hex(s.material_colour);
-    if (!s.piece_colours.empty()) {
-        nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
-        for (const auto& [piece, colour] : s.piece_colours) pieces.push_back({{"piece", piece}, {"colour", srgb_hex(colour)}});
-        j["piece_colours"] = pieces;
-    }
-    j["fracture_tint"] = s.fracture_tint;
-    j["cavity_shade"] = s.cavity_shade;
-    j["background"] = srgb_hex(s.background);
-    return j;
+    Shot shot;
+    shot.render = s;
+    return settings_json("render", shot);
 }
 
 }  // namespace shatter

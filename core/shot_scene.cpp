@@ -1,5 +1,6 @@
-// The shot file's [scene] (with its [[scene.colliders]] and [[scene.kinematic]] arrays),
-// [object], [material] and [simulate] sections (docs/shot.md). Every key is checked against its
+// The shot file's arrays of tables: [[scene.colliders]], [[scene.kinematic]] and
+// [[object.driven]] (docs/shot.md); the scalar keys of [scene], [object], [material] and
+// [simulate] are declared in core/setting_table_scene.cpp. Every key is checked against its
 // limits where it is read; each entry of an array of tables is read as its own section, named
 // "scene.colliders[2]" (0-based), so that an unknown key there is an error with file:line.
 #include <filesystem>
@@ -8,21 +9,13 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/setting_table.h"
 #include "core/shot_sections.h"
 
 namespace shatter {
 
 namespace {
 
-constexpr Limits kGravityLimits{-1e3, 1e3, "m/s^2"};
-constexpr Limits kPositionLimits{-1e6, 1e6, "m"};
-constexpr Limits kRotationLimits{-360, 360, "degrees"};
-constexpr Limits kVelocityLimits{-1e4, 1e4, "m/s"};
-constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
-constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
-constexpr Limits kRadiusLimits{1e-6, 1e6, "m"};
-constexpr Limits kColourLimits{0, 1, "(linear RGB)"};
-constexpr Limits kPieceIndexLimits{0, 1e9, "(piece index)"};
 constexpr Limits kKeyTimeLimits{0, 3600, "s"};
 
 // An array of `n` numbers, each within `limits`; `example` is a valid value for the fix.
@@ -39,7 +32,7 @@ bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limit
         const std::string name = fmt::format("{}[{}]", s.key_name(key), i);
         auto v = e.value<double>();
         if (!v) s.fail(&e, name + " is not a number", fmt::format("write e.g. {} = {}", key, example));
-        check_limits(s.where(&e), name, *v, limits, false);
+        check_limits(s.where(&e), name, *v, limits, s.from_flag());
         values[i] = *v;
     }
     std::copy(values.begin(), values.end(), out);
@@ -48,30 +41,6 @@ bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limit
 
 bool vec3(TomlSection& s, const char* key, Vec3& out, const Limits& limits, const char* example) {
     return numbers(s, key, out.data(), 3, limits, example);
-}
-
-bool colour(TomlSection& s, std::array<float, 3>& out) {
-    Vec3 c;
-    if (!vec3(s, "colour", c, kColourLimits, "[0.8, 0.2, 0.1]")) return false;
-    out = {static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())};
-    return true;
-}
-
-// A string key that must be one of `choices`.
-template <class T>
-void choice(TomlSection& s, const char* key, T& out, const std::vector<std::pair<const char*, T>>& choices) {
-    std::string text;
-    if (!s.text(key, text)) return;
-    std::vector<std::string> names;
-    for (const auto& [name, value] : choices) {
-        if (text == name) {
-            out = value;
-            return;
-        }
-        names.push_back(fmt::format("\"{}\"", name));
-    }
-    s.fail(s.node(key), fmt::format("{} = \"{}\" is not one of {}", s.key_name(key), text, fmt::join(names, ", ")),
-           fmt::format("use {}", fmt::join(names, " or ")));
 }
 
 std::string beside_shot(const std::string& path, const std::string& shot_path) {
@@ -87,22 +56,16 @@ void refuse_for_shape(TomlSection& s, bool given, const char* key, ShapeKind kin
            fmt::format("remove {} or choose the shape it belongs to (docs/shot.md)", key));
 }
 
-void read_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_path, bool kinematic) {
-    if (kinematic)
-        choice<ShapeKind>(s, "shape", shape.kind, {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}});
-    else
-        choice<ShapeKind>(s, "shape", shape.kind,
-                          {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}, {"plane", ShapeKind::Plane},
-                           {"mesh", ShapeKind::Mesh}});
-    const bool size = vec3(s, "size", shape.size, kSizeLimits, "[1, 0.1, 1]");
-    const bool radius = s.number("radius", shape.radius, kRadiusLimits);
-    const bool mesh = !kinematic && s.text("mesh", shape.mesh);
-    const bool mesh_scale = !kinematic && s.number("mesh_scale", shape.mesh_scale, kScaleLimits);
+// After the table's keys (core/setting_table_scene.cpp): refuses a key the shape does not use
+// and resolves a mesh collider's file.
+void check_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_path, bool kinematic) {
     const ShapeKind k = shape.kind;
-    refuse_for_shape(s, size && k != ShapeKind::Box, "size", k);
-    refuse_for_shape(s, radius && k != ShapeKind::Sphere, "radius", k);
+    refuse_for_shape(s, s.node("size") && k != ShapeKind::Box, "size", k);
+    refuse_for_shape(s, s.node("radius") && k != ShapeKind::Sphere, "radius", k);
+    if (kinematic) return;  // mesh and mesh_scale are unknown keys there
+    const bool mesh = s.node("mesh");
     refuse_for_shape(s, mesh && k != ShapeKind::Mesh, "mesh", k);
-    refuse_for_shape(s, mesh_scale && k != ShapeKind::Mesh, "mesh_scale", k);
+    refuse_for_shape(s, s.node("mesh_scale") && k != ShapeKind::Mesh, "mesh_scale", k);
     if (k == ShapeKind::Mesh) {
         if (shape.mesh.empty())
             s.fail(mesh ? s.node("mesh") : s.node("shape"),
@@ -112,24 +75,13 @@ void read_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_pa
     }
 }
 
-void read_pose(TomlSection& s, Pose& pose) {
-    vec3(s, "position", pose.position, kPositionLimits, "[0, 1, 0]");
-    vec3(s, "rotation", pose.rotation_deg, kRotationLimits, "[0, 45, 0]");
-}
-
-void read_surface(TomlSection& s, SurfaceSettings& surface) {
-    s.number("friction", surface.friction, kFrictionLimits);
-    s.number("restitution", surface.restitution, kRestitutionLimits);
-}
-
 void read_collider(TomlSection& s, ColliderSettings& c, const std::string& shot_path) {
-    s.text("name", c.name);
-    read_shape(s, c.shape, shot_path, false);
-    read_pose(s, c.pose);
-    read_surface(s, c.surface);
-    colour(s, c.colour);
+    for (const auto& setting : collider_settings()) setting.read(s, c);
+    check_shape(s, c.shape, shot_path, false);
     s.finish();
 }
+
+}  // namespace
 
 // keys = [[t, x, y, z], ...]: times in seconds, strictly increasing.
 void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
@@ -159,30 +111,25 @@ void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
     }
 }
 
+namespace {
+
 void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& shot_path) {
-    s.text("name", k.name);
-    read_shape(s, k.shape, shot_path, true);
-    read_pose(s, k.pose);
-    const bool velocity = vec3(s, "velocity", k.velocity, kVelocityLimits, "[1, 0, 0]");
-    read_keys(s, k.keys);
+    for (const auto& setting : kinematic_settings()) setting.read(s, k);
+    check_shape(s, k.shape, shot_path, true);
     if (!k.keys.empty()) {
-        const char* clash = velocity ? "velocity" : s.node("position") ? "position" : nullptr;
+        const char* clash = s.node("velocity") ? "velocity" : s.node("position") ? "position" : nullptr;
         if (clash)
             s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name(clash)),
                    "keep one: keys for a path, or position and velocity for constant motion");
         k.pose.position = k.keys.front().position;  // the pose at t = 0 (held before the first key)
     }
-    read_surface(s, k.surface);
-    colour(s, k.colour);
     s.finish();
 }
 
 // [[object.driven]]: a piece the scene moves (kinematic) or holds (fixed = true).
 void read_drive(TomlSection& s, PieceDriveSettings& d, const std::string&) {
-    s.integer("piece", d.piece, kPieceIndexLimits);
-    s.boolean("fixed", d.fixed);
-    const bool moving = vec3(s, "velocity", d.velocity, kVelocityLimits, "[0.05, 0, 0]");
-    read_keys(s, d.keys);
+    for (const auto& setting : driven_settings()) setting.read(s, d);
+    const bool moving = s.node("velocity");
     if (!d.keys.empty() && moving)
         s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name("velocity")),
                "keep one: keys (offsets from the start at times) or a constant velocity");
@@ -214,67 +161,13 @@ bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const 
     return numbers(s, key, out, n, limits, example);
 }
 
-void read_scene_section(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
-    vec3(s, "gravity", scene.gravity, kGravityLimits, "[0, -9.81, 0]");
-    s.boolean("ground", scene.ground);
-    s.number("ground_height", scene.ground_height, kPositionLimits);
-    s.number("ground_friction", scene.ground_surface.friction, kFrictionLimits);
-    s.number("ground_restitution", scene.ground_surface.restitution, kRestitutionLimits);
+void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
     read_table_array(s, "colliders", shot_path, scene.colliders, read_collider);
     read_table_array(s, "kinematic", shot_path, scene.kinematic, read_kinematic);
-    s.finish();
 }
 
-void read_object_section(TomlSection& s, ObjectSettings& object) {
-    read_pose(s, object.pose);
-    vec3(s, "velocity", object.velocity, kVelocityLimits, "[0, -1, 0]");
-    vec3(s, "angular_velocity", object.angular_velocity, kAngularVelocityLimits, "[0, 3.14, 0]");
+void read_object_driven(TomlSection& s, ObjectSettings& object) {
     read_table_array(s, "driven", "", object.driven, read_drive);
-    s.finish();
-}
-
-void read_material_section(TomlSection& s, MaterialSettings& material) {
-    double density = 0;
-    if (s.number("density", density, kDensityLimits)) material.density = density;
-    s.number("stiffness", material.stiffness, kStiffnessLimits);
-    s.number("damping", material.damping, kDampingLimits);
-    s.number("strength", material.strength, kStrengthLimits);
-    s.number("alpha", material.alpha, kAlphaLimits);
-    s.boolean("stiffen", material.stiffen);
-    read_surface(s, material.surface);
-    s.finish();
-}
-
-void read_simulate_section(TomlSection& s, SimulateSettings& simulate) {
-    const toml::node* duration = s.node("duration");
-    if (duration && duration->is_string()) {
-        if (duration->as_string()->get() != "auto")
-            s.fail(duration, fmt::format("{} must be a number of seconds or \"auto\"", s.key_name("duration")),
-                   "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)");
-        simulate.auto_duration = true;
-    } else {
-        s.number("duration", simulate.duration, kDurationLimits);
-    }
-    s.number("max_duration", simulate.max_duration, kDurationLimits);
-    s.number("fps", simulate.fps, kFpsLimits);
-    s.integer("substeps", simulate.substeps, kSubstepsLimits);
-    s.integer("iterations", simulate.iterations, kIterationsLimits);
-    choice<EnergySplitMode>(s, "energy_split", simulate.energy_split,
-                            {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}});
-    choice<KickDirectionMode>(s, "directions", simulate.directions,
-                              {{"paper", KickDirectionMode::Paper},
-                               {"opposed", KickDirectionMode::Opposed},
-                               {"force", KickDirectionMode::Force}});
-    s.number("rate_limit", simulate.rate_limit, kRateLimitLimits);
-    s.boolean("rollback", simulate.rollback);
-    s.boolean("exact_energy", simulate.exact_energy);
-    s.integer("seed", simulate.seed);
-    s.number("max_cfm", simulate.max_cfm, kMaxCfmLimits);
-    choice<BreakCriterion>(s, "break_criterion", simulate.break_criterion,
-                           {{"force", BreakCriterion::Force}, {"bullet_impulse", BreakCriterion::BulletImpulse}});
-    choice<InstabilityMode>(s, "on_instability", simulate.on_instability,
-                            {{"stop", InstabilityMode::Stop}, {"clamp", InstabilityMode::Clamp}});
-    s.finish();
 }
 
 }  // namespace shatter

@@ -36,10 +36,11 @@ toml::table parse_toml_file(const std::string& path) {
     }
 }
 
-TomlSection::TomlSection(const toml::table& table, std::string file, std::string name)
-    : table_(table), file_(std::move(file)), name_(std::move(name)) {}
+TomlSection::TomlSection(const toml::table& table, std::string file, std::string name, bool from_flag)
+    : table_(table), file_(std::move(file)), name_(std::move(name)), from_flag_(from_flag) {}
 
 std::string TomlSection::where(const toml::node* n) const {
+    if (from_flag_) return file_;
     const auto& src = n ? n->source() : table_.source();
     if (src.path && *src.path != file_) return *src.path;  // a value given on the command line (--set)
     if (src.begin.line == 0) return file_;
@@ -47,6 +48,10 @@ std::string TomlSection::where(const toml::node* n) const {
 }
 
 void TomlSection::fail(const toml::node* n, const std::string& problem, const std::string& fix) const {
+    if (from_flag_) {  // "--alpha = -1 is outside ...": the problem names the flag already
+        const std::string prefix = problem.rfind(file_, 0) == 0 ? "" : where(n) + ": ";
+        throw Error(ExitCode::Usage, fmt::format("{}{} (fix: {})", prefix, problem, fix));
+    }
     throw_input_error(where(n), problem, fix);
 }
 
@@ -59,7 +64,7 @@ bool TomlSection::number(const char* key, double& out, const Limits& limits) {
     const toml::node* n = node(key);
     if (!n) return false;
     if (auto v = n->value<double>()) {  // integers convert too
-        check_limits(where(n), key_name(key), *v, limits, false);
+        check_limits(where(n), key_name(key), *v, limits, from_flag_);
         out = *v;
         return true;
     }
@@ -74,7 +79,7 @@ bool TomlSection::integer(const char* key, uint32_t& out, const Limits& limits) 
         fail(n, fmt::format("{} must be a whole number ({})", key_name(key), limits.unit),
              fmt::format("write e.g. {} = {:g}", key, limits.min));
     const double v = static_cast<double>(n->as_integer()->get());
-    check_limits(where(n), key_name(key), v, limits, false);
+    check_limits(where(n), key_name(key), v, limits, from_flag_);
     out = static_cast<uint32_t>(v);
     return true;
 }

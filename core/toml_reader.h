@@ -19,8 +19,10 @@ toml::table parse_toml_file(const std::string& path);
 
 class TomlSection {
 public:
-    // `name` is the table's dotted name in messages ("mesh", "scene.colliders[2]").
-    TomlSection(const toml::table& table, std::string file, std::string name);
+    // `name` is the table's dotted name in messages ("mesh", "scene.colliders[2]"). A section
+    // built from a command-line flag has `from_flag` set and the flag as `file`: its messages
+    // name the flag and its errors are usage errors (exit code 2).
+    TomlSection(const toml::table& table, std::string file, std::string name, bool from_flag = false);
 
     // Each getter leaves `out` alone and returns false when the key is absent.
     bool number(const char* key, double& out, const Limits& limits);
@@ -33,16 +35,24 @@ public:
 
     // "file:line" of a node (or of the table when null).
     std::string where(const toml::node* n = nullptr) const;
-    std::string key_name(const char* key) const { return name_.empty() ? key : name_ + "." + key; }
+    // "section.key" in messages; a section from a flag names the flag instead ("--alpha").
+    std::string key_name(const char* key) const {
+        return from_flag_ ? file_ : name_.empty() ? key : name_ + "." + key;
+    }
     [[noreturn]] void fail(const toml::node* n, const std::string& problem, const std::string& fix) const;
 
     // Throws for every key that no getter asked for.
     void finish() const;
 
+    const std::string& file() const { return file_; }
+    const std::string& name() const { return name_; }
+    bool from_flag() const { return from_flag_; }
+
 private:
     const toml::table& table_;
     std::string file_;
     std::string name_;
+    bool from_flag_;
     std::set<std::string> asked_;
 };
 

@@ -61,6 +61,21 @@ TEST(SimulateCommand, AlphaFlagOverridesTheShot) {
     EXPECT_EQ(run_shatter({"simulate", kFixture, "--shot", shot}).exit_code, 3);  // duplicate table: file:line error
 }
 
+TEST(SimulateCommand, SetOverridesTheShotLikeItsFlagAndRefusesSectionsSimulateDoesNotRead) {
+    TempDir dir;
+    const std::string shot = dir.write("s.toml", "[material]\nalpha = 0.5\nstiffness = 1e12\n[simulate]\nduration = 0.1\n");
+    auto r = run_shatter({"simulate", kFixture, "--shot", shot, "--set", "material.alpha=2", "-o", dir.file("a.traj")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_shatter({"simulate", kFixture, "--shot", shot, "--alpha", "2", "-o", dir.file("b.traj")}).exit_code, 0);
+    EXPECT_EQ(slurp(dir.file("a.traj")), slurp(dir.file("b.traj")));  // the flag is an alias of the key
+    r = run_shatter({"simulate", kFixture, "--shot", shot, "--set", "render.width=640"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--set render.width=640: shatter simulate does not read [render]"), std::string::npos) << r.err;
+    r = run_shatter({"simulate", kFixture, "--set", "simulate.fps=0"});
+    EXPECT_EQ(r.exit_code, 3);  // checked like the file's own value, as `run --set` is
+    EXPECT_NE(r.err.find("--set simulate.fps=0: simulate.fps = 0 is outside"), std::string::npos) << r.err;
+}
+
 TEST(SimulateCommand, OnInstabilityFlagOverridesTheShotAndIsRecorded) {
     TempDir dir;
     const std::string shot = dir.write("s.toml", "[material]\nstiffness = 1e12\n[simulate]\nduration = 0.1\n");

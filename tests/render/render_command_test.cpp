@@ -93,6 +93,21 @@ TEST(RenderCommand, ShotSectionSetsTheSizeAndFlagsOverrideIt) {
     EXPECT_EQ(load_png(dir.file("b/frame_00001.png")).height, 60u);
 }
 
+TEST(RenderCommand, SetTakesAnyRenderKeyAndItsFlagIsTheSameKey) {
+    TempDir dir;
+    const std::string traj = save_test_trajectory(dir, 1);
+    auto r = run_shatter({"render", fixture_model_path(), traj, "-o", dir.file("a"), "--set", "render.width=150",
+                          "--set", "render.height=80", "--set", "render.msaa=1", "--fov", "30"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(load_png(dir.file("a/frame_00000.png")).width, 150u);
+    r = run_shatter({"render", fixture_model_path(), traj, "-o", dir.file("b"), "--set", "simulate.fps=3"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("shatter render does not read [simulate]"), std::string::npos) << r.err;
+    r = run_shatter({"render", fixture_model_path(), traj, "-o", dir.file("c"), "--fov", "500"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--fov = 500 is outside [1, 170] degrees"), std::string::npos) << r.err;
+}
+
 struct BadCase {
     const char* what;
     std::vector<std::string> args;  // after "render MODEL"

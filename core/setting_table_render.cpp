@@ -1,0 +1,86 @@
+// The [render] table (core/setting_table.h): what render reads. Colours are sRGB "#rrggbb";
+// camera_position, camera_target and piece_colours have their readers in core/shot_render.cpp.
+#include <fmt/format.h>
+
+#include "core/setting_builders.h"
+
+namespace shatter::table {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+Setting colour(const char* key, std::array<float, 3> RenderSettings::*member, const char* help) {
+    return custom(key, "sRGB", "", "#rrggbb", help, [key, member](TomlSection& s, Shot& shot) {
+               read_srgb_colour(s, key, shot.render.*member);
+           })
+        .shows(fmt::format("\"{}\"", srgb_hex(defaults<Shot>().render.*member)))
+        .json([key, member](const Shot& s, ojson& j) { j[key] = srgb_hex(s.render.*member); });
+}
+
+}  // namespace
+
+SettingsSection render_section() {
+    return {"render",
+            {whole("width", "pixels", at(&Shot::render, &RenderSettings::width), kImageSizeLimits,
+                   "image width (the flag --size WxH sets both)"),
+             whole("height", "pixels", at(&Shot::render, &RenderSettings::height), kImageSizeLimits, "image height"),
+             custom("camera_position", "m", "framed", "finite, within 1e6", "camera position [x, y, z]",
+                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_position", shot.render.camera_position); })
+                 .json([](const Shot& s, ojson& j) { put_render_point(j, "camera_position", s.render.camera_position); }),
+             custom("camera_target", "m", "the animation's centre", "finite, within 1e6",
+                    "the point looked at (needs camera_position)",
+                    [](TomlSection& s, Shot& shot) { read_render_point(s, "camera_target", shot.render.camera_target); })
+                 .json([](const Shot& s, ojson& j) { put_render_point(j, "camera_target", s.render.camera_target); }),
+             choice<CameraMode>("camera", at(&Shot::render, &RenderSettings::camera),
+                                {{"follow", CameraMode::Follow}, {"whole", CameraMode::Whole}},
+                                "without camera_position: follow the pieces, or one fixed camera framing the whole "
+                                "animation",
+                                "a camera mode",
+                                "use \"follow\" (moves with the pieces) or \"whole\" (fixed, frames the whole animation)")
+                 .json([](const Shot& s, ojson& j) {  // what frames the shot when it places no camera
+                     if (!s.render.camera_position) j["camera"] = to_string(s.render.camera);
+                 })
+                 .flag("--camera"),
+             number("fov", "degrees", at(&Shot::render, &RenderSettings::fov), kFovLimits, "vertical field of view")
+                 .flag("--fov"),
+             boolean("shadows", at(&Shot::render, &RenderSettings::shadows), "the key light casts shadows (shadow map)")
+                 .flag("--no-shadows", FlagKind::SetsFalse),
+             whole("shadow_map", "texels", at(&Shot::render, &RenderSettings::shadow_map), kShadowMapLimits,
+                   "shadow map width and height")
+                 .flag("--shadow-map"),
+             custom("msaa", "samples", "4", "1, 2, 4", "samples per pixel: 1 (off), 2 or 4",
+                    [](TomlSection& s, Shot& shot) {
+                        if (s.integer("msaa", shot.render.msaa, Limits{1, 4, "samples"}))
+                            check_msaa(s.where(s.node("msaa")), shot.render.msaa, s.from_flag());
+                    })
+                 .json([](const Shot& s, ojson& j) { j["msaa"] = s.render.msaa; })
+                 .flag("--msaa"),
+             number("key_azimuth", "degrees", at(&Shot::render, &RenderSettings::key_azimuth), kAzimuthLimits,
+                    "key light direction, from the camera's direction about +Y, positive to the right")
+                 .flag("--key-azimuth"),
+             number("key_elevation", "degrees", at(&Shot::render, &RenderSettings::key_elevation), kElevationLimits,
+                    "key light height above the horizon")
+                 .flag("--key-elevation"),
+             choice<ColourMode>("colour_mode", at(&Shot::render, &RenderSettings::colour_mode),
+                                {{"pieces", ColourMode::Pieces}, {"material", ColourMode::Material}},
+                                "pieces: a palette colour by piece id; material: material_colour", "a colour mode",
+                                "use \"pieces\" (palette by piece id) or \"material\" (material_colour)")
+                 .flag("--colour-mode"),
+             colour("material_colour", &RenderSettings::material_colour, "the colour of every piece in material mode")
+                 .flag("--material-colour"),
+             custom("piece_colours", "piece index, sRGB", "none", "`[{piece = 0, colour = \"#2f5fd0\"}, ...]`",
+                    "these pieces in these colours whatever the mode (the chain's blue end cubes)",
+                    [](TomlSection& s, Shot& shot) { read_piece_colours(s, shot.render.piece_colours); })
+                 .json([](const Shot& s, ojson& j) { put_piece_colours(j, s.render.piece_colours); }),
+             number("fracture_tint", "fraction", at(&Shot::render, &RenderSettings::fracture_tint), kTintLimits,
+                    "fracture faces: this fraction of the way from the piece colour to white")
+                 .flag("--fracture-tint"),
+             number("cavity_shade", "fraction", at(&Shot::render, &RenderSettings::cavity_shade), kTintLimits,
+                    "cavity faces: the piece colour times this")
+                 .flag("--cavity-shade"),
+             colour("background", &RenderSettings::background, "background and far ground").flag("--background")},
+            [](TomlSection& s, Shot& shot) { check_render_camera(s, shot.render); }};
+}
+
+}  // namespace shatter::table

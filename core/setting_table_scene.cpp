@@ -1,0 +1,255 @@
+// The [scene], [object], [material] and [simulate] tables (core/setting_table.h): what simulate
+// reads. The arrays of tables of [scene] and [object] are read by core/shot_scene.cpp.
+#include <fmt/format.h>
+
+#include "core/setting_builders.h"
+
+namespace shatter::table {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// duration: seconds, or "auto" (until the pieces rest, at most max_duration).
+void read_duration(TomlSection& s, Shot& shot) {
+    SimulateSettings& simulate = shot.simulate;
+    const toml::node* duration = s.node("duration");
+    if (duration && duration->is_string()) {
+        if (duration->as_string()->get() != "auto")
+            s.fail(duration, fmt::format("{} must be a number of seconds or \"auto\"", s.key_name("duration")),
+                   "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)");
+        simulate.auto_duration = true;
+    } else if (s.number("duration", simulate.duration, kDurationLimits)) {
+        simulate.auto_duration = false;  // seconds replace an "auto" given before (a flag over the shot)
+    }
+}
+
+// The keys every body of the scene has, between its shape keys and its colour.
+template <class Root>
+std::vector<BasicSetting<Root>> pose_settings() {
+    return {vec3<Root>("position", "m", at(&Root::pose, &Pose::position), kPositionLimits, "[0, 1, 0]",
+                       "the shape's centre (plane: a point on it)"),
+            vec3<Root>("rotation", "degrees", at(&Root::pose, &Pose::rotation_deg), kRotationLimits, "[0, 45, 0]",
+                       "the shape's orientation (plane: its normal is the rotation of +Y)")};
+}
+
+template <class Root>
+std::vector<BasicSetting<Root>> surface_settings() {
+    return {number<Root>("friction", "1", at(&Root::surface, &SurfaceSettings::friction), kFrictionLimits,
+                         "Coulomb friction coefficient"),
+            number<Root>("restitution", "1", at(&Root::surface, &SurfaceSettings::restitution), kRestitutionLimits,
+                         "bounciness")};
+}
+
+template <class Root>
+BasicSetting<Root> name_setting() {
+    return custom<Root>("name", "", "\"\"", "", "a name for messages and render",
+                        [](TomlSection& s, Root& r) { s.text("name", r.name); });
+}
+
+template <class Root>
+std::vector<BasicSetting<Root>> joined(std::vector<std::vector<BasicSetting<Root>>> parts) {
+    std::vector<BasicSetting<Root>> out;
+    for (auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+    return out;
+}
+
+}  // namespace
+
+}  // namespace shatter::table
+
+namespace shatter {
+
+using namespace table;
+
+const std::vector<BasicSetting<ColliderSettings>>& collider_settings() {
+    using C = ColliderSettings;
+    static const std::vector<BasicSetting<C>> settings = joined<C>(
+        {{name_setting<C>(),
+          choice<ShapeKind, C>("shape", at(&C::shape, &ShapeSettings::kind),
+                               {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}, {"plane", ShapeKind::Plane},
+                                {"mesh", ShapeKind::Mesh}},
+                               "the collider's shape"),
+          vec3<C>("size", "m", at(&C::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
+                  "box: full extents along its own axes"),
+          number<C>("radius", "m", at(&C::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius"),
+          custom<C>("mesh", "", "(required for mesh)", "",
+                    "mesh: the mesh file, relative to the shot file's folder",
+                    [](TomlSection& s, C& c) { s.text("mesh", c.shape.mesh); }),
+          number<C>("mesh_scale", "m per mesh unit", at(&C::shape, &ShapeSettings::mesh_scale), kScaleLimits,
+                    "mesh: multiplies every coordinate")},
+         pose_settings<C>(),
+         surface_settings<C>(),
+         {linear_colour<C>(&C::colour, "colour in render")}});
+    return settings;
+}
+
+const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings() {
+    using K = KinematicSettings;
+    static const std::vector<BasicSetting<K>> settings = joined<K>(
+        {{name_setting<K>(),
+          choice<ShapeKind, K>("shape", at(&K::shape, &ShapeSettings::kind),
+                               {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}}, "the body's shape"),
+          vec3<K>("size", "m", at(&K::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
+                  "box: full extents along its own axes"),
+          number<K>("radius", "m", at(&K::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius")},
+         pose_settings<K>(),
+         {vec3<K>("velocity", "m/s", at(&K::velocity), kVelocityLimits, "[1, 0, 0]",
+                  "constant velocity: the position at time t is position + velocity t"),
+          custom<K>("keys", "s, m", "(none)", "t 0 to 3600, strictly increasing; x, y, z -1e6 to 1e6",
+                    "`[[t, x, y, z], ...]`: positions at times, linear in between, the first held before and the "
+                    "last after; replaces `position` and `velocity`",
+                    [](TomlSection& s, K& k) { read_keys(s, k.keys); })},
+         surface_settings<K>(),
+         {linear_colour<K>(&K::colour, "colour in render")}});
+    return settings;
+}
+
+const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings() {
+    using D = PieceDriveSettings;
+    static const std::vector<BasicSetting<D>> settings = {
+        whole<D>("piece", "", at(&D::piece), Limits{0, 1e9, "(piece index)"},
+                 "which piece (`shatter info MODEL` lists them)")
+            .shows("(required)")
+            .range_is("a piece index of the model"),
+        boolean<D>("fixed", at(&D::fixed), "true: never moves"),
+        vec3<D>("velocity", "m/s", at(&D::velocity), kVelocityLimits, "[0.05, 0, 0]",
+                "constant velocity (not with keys)"),
+        custom<D>("keys", "[s, m, m, m]", "none", "times increasing",
+                  "offsets from the start position at times, linear between, held after the last",
+                  [](TomlSection& s, D& d) { read_keys(s, d.keys); })};
+    return settings;
+}
+
+}  // namespace shatter
+
+namespace shatter::table {
+
+SettingsSection scene_section() {
+    return {"scene",
+            {vec3("gravity", "m/s^2", at(&Shot::scene, &SceneSettings::gravity), kGravityLimits, "[0, -9.81, 0]",
+                  "gravitational acceleration"),
+             boolean("ground", at(&Shot::scene, &SceneSettings::ground), "an infinite static ground plane y = ground_height"),
+             number("ground_height", "m", at(&Shot::scene, &SceneSettings::ground_height), kPositionLimits,
+                    "height of the ground plane"),
+             number("ground_friction", "1", at(&Shot::scene, &SceneSettings::ground_surface, &SurfaceSettings::friction),
+                    kFrictionLimits, "Coulomb friction coefficient of the ground"),
+             number("ground_restitution", "1",
+                    at(&Shot::scene, &SceneSettings::ground_surface, &SurfaceSettings::restitution), kRestitutionLimits,
+                    "bounciness of the ground")},
+            [](TomlSection& s, Shot& shot) { read_scene_arrays(s, shot.scene, s.file()); },
+            [](const Shot& shot, ojson& j) { put_scene_arrays(shot.scene, j); }};
+}
+
+SettingsSection object_section() {
+    return {"object",
+            {vec3("position", "m", at(&Shot::object, &ObjectSettings::pose, &Pose::position), kPositionLimits, "[0, 1, 0]",
+                  "translation of the model frame"),
+             vec3("rotation", "degrees", at(&Shot::object, &ObjectSettings::pose, &Pose::rotation_deg), kRotationLimits,
+                  "[0, 45, 0]", "rotation of the model frame, about its origin"),
+             vec3("velocity", "m/s", at(&Shot::object, &ObjectSettings::velocity), kVelocityLimits, "[0, -1, 0]",
+                  "initial linear velocity of every piece"),
+             vec3("angular_velocity", "rad/s", at(&Shot::object, &ObjectSettings::angular_velocity),
+                  kAngularVelocityLimits, "[0, 3.14, 0]",
+                  "initial angular velocity about the object's centre of mass")},
+            [](TomlSection& s, Shot& shot) { read_object_driven(s, shot.object); },
+            [](const Shot& shot, ojson& j) { put_object_driven(shot.object, j); }};
+}
+
+SettingsSection material_section() {
+    return {"material",
+            {optional_number("density", "kg/m^3", at(&Shot::material, &MaterialSettings::density), kDensityLimits,
+                             "density of the pieces (overrides the one prescore used)", "the model's", Unset::Null),
+             number("stiffness", "N/m^3", at(&Shot::material, &MaterialSettings::stiffness), kStiffnessLimits,
+                    "constraint stiffness per m^2 of area (~ Young's modulus / tet size)")
+                 .flag("--stiffness"),
+             number("damping", "N s/m^3", at(&Shot::material, &MaterialSettings::damping), kDampingLimits,
+                    "constraint damping per m^2 of area")
+                 .flag("--damping"),
+             number("strength", "Pa", at(&Shot::material, &MaterialSettings::strength), kStrengthLimits,
+                    "tensile strength: breaking force per m^2 of area")
+                 .flag("--strength"),
+             number("alpha", "1", at(&Shot::material, &MaterialSettings::alpha), kAlphaLimits,
+                    "fraction of a broken constraint's stored energy given back as kinetic energy (0: plain breaking; "
+                    "> 1 for artistic effect)")
+                 .flag("--alpha"),
+             number("friction", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::friction),
+                    kFrictionLimits, "Coulomb friction coefficient of the pieces"),
+             number("restitution", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::restitution),
+                    kRestitutionLimits, "bounciness of the pieces"),
+             boolean("stiffen", at(&Shot::material, &MaterialSettings::stiffen),
+                     "raise a stiffness too soft for the step (CFM above max_cfm) to the least that converges, times "
+                     "1.05, and log it, instead of refusing the shot; the default shot of `shatter run MESH` turns it on")
+                 .json_unless_default()},
+            {}};
+}
+
+SettingsSection simulate_section() {
+    return {"simulate",
+            {custom("duration", "s, or \"auto\"", "4", "0.001 to 3600, or \"auto\"",
+                    "simulated time; frames are recorded at 0, 1/fps, ... up to duration. \"auto\": until every piece "
+                    "has been at rest (no point of it faster than 0.02 m/s) for 0.5 s, checked at each frame, at most "
+                    "max_duration; the movie then ends 0.5 s after the last piece comes to rest",
+                    read_duration)
+                 .json([](const Shot& s, ojson& j) {
+                     j["duration"] = s.simulate.auto_duration ? ojson("auto") : ojson(s.simulate.duration);
+                 })
+                 .flag("--duration"),
+             number("fps", "frames/s", at(&Shot::simulate, &SimulateSettings::fps), kFpsLimits,
+                    "frames recorded per second")
+                 .flag("--fps"),
+             whole("substeps", "steps per frame", at(&Shot::simulate, &SimulateSettings::substeps), kSubstepsLimits,
+                   "solver steps per frame: time step h = 1 / (fps substeps)")
+                 .flag("--substeps"),
+             whole("iterations", "count", at(&Shot::simulate, &SimulateSettings::iterations), kIterationsLimits,
+                   "sequential-impulse iterations per step")
+                 .flag("--iterations"),
+             choice<EnergySplitMode>("energy_split", at(&Shot::simulate, &SimulateSettings::energy_split),
+                                     {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}},
+                                     "\"total\": two bodies at rest gain alpha E together; \"per_body\": each gains "
+                                     "alpha E")
+                 .flag("--energy-split"),
+             choice<KickDirectionMode>("directions", at(&Shot::simulate, &SimulateSettings::directions),
+                                       {{"paper", KickDirectionMode::Paper},
+                                        {"opposed", KickDirectionMode::Opposed},
+                                        {"force", KickDirectionMode::Force}},
+                                       "kick directions: \"paper\": -(t x f) per body; \"opposed\": "
+                                       "momentum-conserving; \"force\": equal and opposite along the joint's load, never "
+                                       "into the partner (momentum-conserving; docs/physics.md section 4)")
+                 .flag("--directions"),
+             number("rate_limit", "s", at(&Shot::simulate, &SimulateSettings::rate_limit), kRateLimitLimits,
+                    "least time between two breaks of the object (the paper's chain: 0.3); 0: off")
+                 .flag("--rate-limit"),
+             boolean("rollback", at(&Shot::simulate, &SimulateSettings::rollback),
+                     "re-run a step whose breaks were found, without the broken constraints")
+                 .flag("--rollback", FlagKind::SetsTrue),
+             boolean("exact_energy", at(&Shot::simulate, &SimulateSettings::exact_energy),
+                     "solve the kick impulses for the bodies' motion so that the gained kinetic energy is exactly "
+                     "alpha E")
+                 .flag("--exact-energy", FlagKind::SetsTrue),
+             seed("seed", at(&Shot::simulate, &SimulateSettings::seed), "seed of the random kick directions").flag("--seed"),
+             number("max_cfm", "1", at(&Shot::simulate, &SimulateSettings::max_cfm), kMaxCfmLimits,
+                    "refuse settings whose constraints would need a larger constraint-force mixing"),
+             choice<BreakCriterion>("break_criterion", at(&Shot::simulate, &SimulateSettings::break_criterion),
+                                    {{"force", BreakCriterion::Force}, {"bullet_impulse", BreakCriterion::BulletImpulse}},
+                                    "when a constraint is overloaded: \"force\": the norm of its force exceeds strength "
+                                    "x area; \"bullet_impulse\": Bullet's per-row impulse test, for comparison "
+                                    "(docs/accuracy.md)")
+                 .json_unless_default(),
+             choice<InstabilityMode>("on_instability", at(&Shot::simulate, &SimulateSettings::on_instability),
+                                     {{"stop", InstabilityMode::Stop}, {"clamp", InstabilityMode::Clamp}},
+                                     "when a piece's state turns NaN/Inf or the kinetic energy exceeds what the scene "
+                                     "can supply (docs/reliability.md): \"stop\": end there, keep the frames before, "
+                                     "trajectory marked incomplete, exit code 5; \"clamp\": scale the velocities down "
+                                     "to the limit and go on (counted and logged; a NaN still stops)")
+                 .json_unless_default()
+                 .flag("--on-instability"),
+             number("max_duration", "s", at(&Shot::simulate, &SimulateSettings::max_duration), kDurationLimits,
+                    "the cap of duration = \"auto\" (unused otherwise)")
+                 .json([](const Shot& s, ojson& j) {
+                     if (s.simulate.auto_duration) j["max_duration"] = s.simulate.max_duration;
+                 })},
+            {}};
+}
+
+}  // namespace shatter::table
