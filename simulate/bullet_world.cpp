@@ -215,6 +215,12 @@ BulletWorld::~BulletWorld() {
 
 namespace shatter {
 
+// The radius of a piece's contact patch with what it rests on, as a fraction of its own radius.
+constexpr double kContactPatch = 0.25;
+// Rolling resistance (the lever arm of the normal force against rolling), as a fraction of a
+// piece's radius.
+constexpr double kRollingResistance = 0.01;
+
 void BulletWorld::build_pieces(const Model& model) {
     Impl& m = *impl_;
     const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
@@ -279,6 +285,16 @@ void BulletWorld::build_pieces(const Model& model) {
             body = m.add_body(0, btVector3(0, 0, 0), compound, start, m.motions.back().get(), setup_.material.surface);
             body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
         }
+        // A piece lying on a face spins about the contact normal with nothing to stop it: Bullet's
+        // friction acts at the contact points, in the plane. Torsional friction of a contact patch
+        // of radius a under pressure N is (2/3) mu N a; Bullet combines a pair's as
+        // spinning_A mu_B + spinning_B mu_A, so each piece's spinning friction is (2/3) a, with a
+        // a quarter of its radius. Bullet adds the torsional row only with rolling friction, which
+        // gets a rolling resistance of 1% of the radius (docs/physics.md section 6).
+        double radius = 0;
+        for (const Vec3& v : piece.surface.vertices) radius = std::max(radius, (v - piece.mass.center).norm());
+        body->setSpinningFriction(btScalar(2.0 / 3.0 * kContactPatch * radius));
+        body->setRollingFriction(btScalar(kRollingResistance * radius));
         body->setUserIndex(int(i));
         pb.body = body;
     }
