@@ -1,6 +1,7 @@
 // The default shot of `shatter run MESH` (core/shot.h). Keep in step with assets/bunny.toml:
 // tests/core/shot_test.cpp compares every setting but the mesh's path and size, the camera, and
-// [material] stiffen (on here: a mesh whose pieces come out smaller or heavier than the bunny's
+// [object] place (the base of the mesh 1.5 m up: a user's mesh has its own origin, the demo's bunny
+// sits on its origin) and [material] stiffen (on here: a mesh whose pieces come out smaller or heavier than the bunny's
 // gets the least stiffness its step converges with instead of a refusal).
 #include "core/shot.h"
 
@@ -18,6 +19,7 @@ collision_max_parts = 8
 
 [object]
 position = [0, 1.5, 0]
+place = "base"
 
 [material]
 stiffness = 3e9

@@ -84,8 +84,13 @@ struct PieceDriveSettings {
 };
 
 // Where the fracturable object starts: model coordinates x go to R x + position.
+// What the object's `position` places: the model frame's origin, or the centre of the bottom of
+// the object's bounding box (after its rotation): a mesh from elsewhere has its own origin.
+enum class Placement { Origin, Base };
+
 struct ObjectSettings {
     Pose pose;
+    Placement place = Placement::Origin;
     Vec3 velocity = Vec3::Zero();          // initial linear velocity of every piece (unit: m/s)
     Vec3 angular_velocity = Vec3::Zero();  // initial angular velocity about the object's centre of mass (unit: rad/s)
     std::vector<PieceDriveSettings> driven;  // [[object.driven]]

@@ -147,6 +147,11 @@ SettingsSection object_section() {
                   "translation of the model frame"),
              vec3("rotation", "degrees", at(&Shot::object, &ObjectSettings::pose, &Pose::rotation_deg), kRotationLimits,
                   "[0, 45, 0]", "rotation of the model frame, about its origin"),
+             choice<Placement>("place", at(&Shot::object, &ObjectSettings::place),
+                               {{"origin", Placement::Origin}, {"base", Placement::Base}},
+                               "what `position` places: \"origin\": the model frame's origin; \"base\": the centre of "
+                               "the bottom of the object's bounding box, after its rotation (`shatter run MESH`)")
+                 .json_unless_default(),
              vec3("velocity", "m/s", at(&Shot::object, &ObjectSettings::velocity), kVelocityLimits, "[0, -1, 0]",
                   "initial linear velocity of every piece"),
              vec3("angular_velocity", "rad/s", at(&Shot::object, &ObjectSettings::angular_velocity),

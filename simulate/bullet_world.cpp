@@ -221,10 +221,25 @@ constexpr double kContactPatch = 0.25;
 // piece's radius.
 constexpr double kRollingResistance = 0.01;
 
+// Where the model frame's origin goes: the object's position, or (place = "base") the position
+// less the centre of the bottom of the rotated model's bounding box.
+static Vec3 object_translation(const Model& model, const ObjectSettings& object) {
+    if (object.place == Placement::Origin) return object.pose.position;
+    const Mat3 r = rotation_matrix(object.pose.rotation_deg);
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Piece& p : model.pieces)
+        for (const Vec3& v : p.surface.vertices) {
+            const Vec3 x = r * v;
+            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+        }
+    if (!(lo.x() <= hi.x())) return object.pose.position;
+    return object.pose.position - Vec3(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));
+}
+
 void BulletWorld::build_pieces(const Model& model) {
     Impl& m = *impl_;
     const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
-    const Vec3 t_obj = setup_.object.pose.position;
+    const Vec3 t_obj = object_translation(model, setup_.object);
     const double scale = setup_.material.density ? *setup_.material.density / model.density : 1.0;
     std::vector<const PieceDriveSettings*> drive(model.pieces.size(), nullptr);
     for (const PieceDriveSettings& d : setup_.object.driven) {
@@ -303,7 +318,7 @@ void BulletWorld::build_pieces(const Model& model) {
 void BulletWorld::build_joints(const Model& model) {
     Impl& m = *impl_;
     const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
-    const Vec3 t_obj = setup_.object.pose.position;
+    const Vec3 t_obj = object_translation(model, setup_.object);
     m.joints.resize(model.constraints.size());
     for (size_t i = 0; i < model.constraints.size(); ++i) {
         const Constraint& c = model.constraints[i];

@@ -55,7 +55,7 @@ TEST(ShotFile, ASizeOrNoScaleLeavesTheScaleToTheFileOrTheDefaultSize) {
 }
 
 // `shatter run MESH` runs the default shot, which is assets/bunny.toml without its mesh path,
-// scale and camera: every other setting must agree.
+// scale and camera, with the mesh's base placed: every other setting must agree.
 TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
     const Shot demo = load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/bunny.toml");
     const Shot mine = default_shot_for_mesh("horse.3ds", {"material.alpha=2"});
@@ -65,7 +65,10 @@ TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
     EXPECT_DOUBLE_EQ(mine.material.alpha, 2);
     EXPECT_EQ(to_json(mine.prescore), to_json(demo.prescore));
     EXPECT_EQ(to_json(mine.scene), to_json(demo.scene));
-    EXPECT_EQ(to_json(mine.object), to_json(demo.object));
+    EXPECT_EQ(mine.object.place, Placement::Base);
+    Shot placed = mine;
+    placed.object.place = Placement::Origin;
+    EXPECT_EQ(to_json(placed.object), to_json(demo.object));
     Shot alpha1 = default_shot_for_mesh("horse.3ds");
     EXPECT_TRUE(alpha1.material.stiffen);
     alpha1.material.stiffen = false;

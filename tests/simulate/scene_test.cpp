@@ -2,6 +2,8 @@
 // object starts where and how the shot places it.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "scenes/box_model.h"
 #include "simulate/simulate.h"
 
@@ -43,6 +45,22 @@ TEST(Scene, AMeshColliderHoldsAPieceDroppedOnIt) {
     const SimulationResult r = simulate(one_box(), in, "test");
     const float y = r.trajectory.pose(r.trajectory.frames() - 1, 0).position.y();
     EXPECT_NEAR(y, 1.05f, 0.01f);  // resting on the cube's top face (the box is 10 cm)
+}
+
+TEST(Scene, PlaceBasePutsTheBottomOfTheRotatedBoundingBoxAtThePosition) {
+    SimulationInput in;
+    in.scene.ground = false;
+    in.scene.gravity = Vec3::Zero();
+    in.object.pose.position = Vec3(1, 2, 3);
+    in.object.pose.rotation_deg = Vec3(0, 0, 45);  // the 10 cm box on an edge: 7.07 cm below its centre
+    in.object.place = Placement::Base;
+    in.simulate.duration = 0.1;
+    const Model box = one_box();  // centred on the model frame's origin
+    const SimulationResult r = simulate(box, in, "test");
+    const Eigen::Vector3f centre = r.trajectory.pose(0, 0).position;
+    EXPECT_NEAR(centre.x(), 1.0f, 1e-6);
+    EXPECT_NEAR(centre.y(), 2.0f + 0.05f * std::sqrt(2.0f), 1e-6);
+    EXPECT_NEAR(centre.z(), 3.0f, 1e-6);
 }
 
 TEST(Scene, TheObjectStartsWhereAndHowTheShotPlacesIt) {
