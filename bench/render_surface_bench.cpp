@@ -13,6 +13,7 @@
 #include "prescore/mesh_check.h"
 #include "prescore/mesh_load.h"
 #include "prescore/prescore.h"
+#include "prescore/repair.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"
 
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
         for (Vec3& v : input.vertices) v *= report.scale;
         if (check_mesh(input, false).volume < 0) orient_outward(input);
         const double diagonal = report.input.diagonal;
+        // A wrapped input: cut the wrap, as prescore's first repair made it (a thickening wrap
+        // at another offset is not reproduced here).
+        if (report.repaired) input = alpha_wrap(input, mesh.wrap_alpha * diagonal, mesh.wrap_offset * diagonal);
         RenderSurfaceSettings rs;
         rs.margin = margin_tets * diagonal / report.resolution;
         auto t2 = Clock::now();
