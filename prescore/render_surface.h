@@ -1,0 +1,55 @@
+// Render surfaces: what a piece looks like, apart from what it simulates with (its tets, mass
+// and collision parts). The input surface cut along the pieces' fracture faces:
+//
+//   cell     per piece, its tet boundary with every vertex on the object's outer boundary
+//            pushed outward by `margin` along that vertex's outer normal (area-weighted over the
+//            outer tet faces around it, the same for every piece that shares the vertex, so the
+//            cells still meet face to face and tile the pushed-out tet volume);
+//   cut      CGAL's corefine_and_compute_intersection(input, cell) (exact predicates): the
+//            input's faces inside the cell keep the input's vertices and smooth normals (creases
+//            sharper than `crease_degrees` stay sharp); the cell's faces inside the input are
+//            the piece's fracture and cavity faces, flat, with the cell face's kind;
+//   fallback a piece whose cell does not bound a volume, self-intersects, or whose cut fails
+//            or comes out empty keeps its tet surface (flat normals); counted and logged.
+//
+// The margin must exceed the largest distance from the input to the tet boundary, or the
+// input's parts beyond it are lost (the pushed cell's own faces then show there, flat, as
+// Outer); a large one folds cells over in concave parts. It is tried at 1, 0.7, 0.5 and 0.35
+// times `margin`, keeping the first at which every cell is closed and free of
+// self-intersections (else the one with the fewest bad cells). 0.15 tet sizes suits the demo. Deterministic: one thread, output in CGAL's face order, vertices in first use.
+// docs/render.md, "Render surfaces", gives the measurements.
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/model.h"
+
+namespace shatter {
+
+struct RenderSurface {
+    std::vector<Vec3> vertices;  // (unit: m, model frame)
+    std::vector<Vec3> normals;   // unit, one per vertex
+    std::vector<Tri> triangles;  // outward oriented
+    std::vector<FaceKind> kinds; // one per triangle
+    bool fell_back = false;      // the tet surface, flat shaded
+};
+
+struct RenderSurfaceSettings {
+    double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
+    double crease_degrees = 40;     // input edges with a dihedral angle above this stay sharp (unit: degrees)
+};
+
+// One render surface per model piece; `input` is the closed, outward surface the tets were
+// made from (the alpha wrap when prescore wrapped the input).
+std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
+                                           const RenderSurfaceSettings& settings);
+
+// The piece's tet surface as a render surface: flat, three vertices per triangle.
+RenderSurface flat_render_surface(const PieceSurface& surface);
+
+// Per-corner normals of `mesh` that are smooth across edges whose faces differ by less than
+// `crease_degrees` (area-weighted face normals); corner k of triangle t at [3 t + k].
+std::vector<Vec3> corner_normals(const TriangleMesh& mesh, double crease_degrees);
+
+}  // namespace shatter

@@ -1,0 +1,343 @@
+// Render surfaces by corefinement (CGAL 5.5: Polygon_mesh_processing::
+// corefine_and_compute_intersection on Surface_mesh, Epick: exact predicates, the new points
+// rounded to doubles). The design is in render_surface.h. Faces of the result are told apart by
+// where they lie: a face within 1e-7 diagonals of an input triangle is a piece of it (Outer,
+// smooth normals interpolated from that triangle's corner normals), any other face comes from
+// the cell and takes the kind of the nearest cell face (flat).
+#include "prescore/render_surface.h"
+
+#include <map>
+#include <tuple>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup_extension.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <spdlog/spdlog.h>
+
+#include "prescore/tet_topology.h"
+
+namespace shatter {
+
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Soup = std::vector<std::array<size_t, 3>>;
+
+using SK = CGAL::Simple_cartesian<double>;
+using STriangle = SK::Triangle_3;
+using Iterator = std::vector<STriangle>::const_iterator;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<SK, CGAL::AABB_triangle_primitive<SK, Iterator>>>;
+
+Vec3 vec(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}; }
+SK::Point_3 spoint(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+// A piece's tet boundary in mesh vertex indices, in piece_surface's order, with its kinds.
+struct Cell {
+    std::vector<Tri> triangles;
+    std::vector<FaceKind> kinds;
+};
+
+std::vector<Cell> cells_of(const Model& model, const TetTopology& topo) {
+    std::vector<Cell> cells(model.pieces.size());
+    std::vector<size_t> emitted(model.pieces.size(), 0);
+    for (size_t t = 0; t < model.mesh.tets.size(); ++t) {
+        const uint32_t p = model.tet_piece[t];
+        for (int i = 0; i < 4; ++i) {
+            const int32_t u = topo.neighbour[t][i];
+            if (u >= 0 && model.tet_piece[u] == p) continue;
+            Tri tri;
+            for (int k = 0; k < 3; ++k) tri[k] = model.mesh.tets[t][kTetFaces[i][k]];
+            const PieceSurface& s = model.pieces[p].surface;
+            const size_t e = emitted[p]++;
+            cells[p].triangles.push_back(tri);
+            cells[p].kinds.push_back(e < s.kinds.size() ? s.kinds[e] : (u >= 0 ? FaceKind::Fracture : FaceKind::Outer));
+        }
+    }
+    return cells;
+}
+
+// The outer normal of every mesh vertex (zero for vertices on no outer face).
+std::vector<Vec3> outer_normals(const Model& model, const std::vector<Cell>& cells) {
+    std::vector<Vec3> normal(model.mesh.vertices.size(), Vec3::Zero());
+    for (const Cell& c : cells)
+        for (size_t f = 0; f < c.triangles.size(); ++f) {
+            if (c.kinds[f] != FaceKind::Outer) continue;
+            const Tri& t = c.triangles[f];
+            const auto& v = model.mesh.vertices;
+            const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+            for (uint32_t i : t) normal[i] += n;
+        }
+    for (Vec3& n : normal)
+        if (n.norm() > 0) n.normalize();
+    return normal;
+}
+
+// Where a piece touches itself along an edge or at a vertex (two of its tets meet only there),
+// its boundary is not a manifold. Each face is paired across each edge with the opposite face
+// that closes the same solid wedge (the first one turning about the edge toward the solid side),
+// each vertex gets one copy per fan of faces joined by those pairs, and copies that share a
+// position move by `nudge` toward their own faces, so that the sheets no longer touch.
+std::vector<Vec3> separate_sheets(const std::vector<Vec3>& points, Soup& soup, double nudge) {
+    using Edge = std::pair<size_t, size_t>;
+    std::map<Edge, std::vector<size_t>> faces_of;  // directed edge -> faces that hold it
+    for (size_t f = 0; f < soup.size(); ++f)
+        for (int k = 0; k < 3; ++k) faces_of[{soup[f][k], soup[f][(k + 1) % 3]}].push_back(f);
+    auto third = [&](size_t f, size_t a, size_t b) {
+        for (size_t v : soup[f])
+            if (v != a && v != b) return v;
+        return a;
+    };
+    // Union-find over corners (3 f + k): corners of one vertex joined across paired edges.
+    std::vector<size_t> parent(3 * soup.size());
+    for (size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto find = [&](size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto corner = [&](size_t f, size_t v) {
+        for (int k = 0; k < 3; ++k)
+            if (soup[f][k] == v) return 3 * f + k;
+        return 3 * f;
+    };
+    for (size_t f = 0; f < soup.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const size_t a = soup[f][k], b = soup[f][(k + 1) % 3];
+            auto it = faces_of.find({b, a});
+            if (it == faces_of.end()) continue;
+            size_t g = it->second.front();
+            if (it->second.size() > 1) {
+                const Vec3 e = (points[b] - points[a]).normalized();
+                auto perp = [&](size_t h) {
+                    const Vec3 d = points[third(h, a, b)] - points[a];
+                    return Vec3(d - d.dot(e) * e);
+                };
+                const Vec3 u = perp(f).normalized(), w = e.cross(u);
+                double best = 1e300;
+                for (size_t h : it->second) {
+                    const Vec3 d = perp(h);
+                    double theta = std::atan2(d.dot(w), d.dot(u));
+                    theta = theta <= 0 ? -theta : 2 * M_PI - theta;
+                    if (theta < best) best = theta, g = h;
+                }
+            }
+            for (size_t v : {a, b}) parent[find(corner(f, v))] = find(corner(g, v));
+        }
+    std::vector<Vec3> out;
+    std::map<size_t, size_t> copy;  // corner root -> new point
+    std::vector<size_t> origin;
+    for (size_t f = 0; f < soup.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            auto [it, fresh] = copy.emplace(find(3 * f + k), out.size());
+            if (fresh) out.push_back(points[soup[f][k]]), origin.push_back(soup[f][k]);
+        }
+    std::vector<size_t> copies(points.size(), 0);
+    for (size_t o : origin) ++copies[o];
+    std::vector<Vec3> toward(out.size(), Vec3::Zero());
+    Soup result(soup.size());
+    for (size_t f = 0; f < soup.size(); ++f) {
+        for (int k = 0; k < 3; ++k) result[f][k] = copy[find(3 * f + k)];
+        const Vec3 c = (out[result[f][0]] + out[result[f][1]] + out[result[f][2]]) / 3;
+        for (size_t v : result[f]) toward[v] += c - out[v];
+    }
+    for (size_t i = 0; i < out.size(); ++i)
+        if (copies[origin[i]] > 1 && toward[i].norm() > 0) out[i] += nudge * toward[i].normalized();
+    soup = std::move(result);
+    return out;
+}
+
+bool soup_to_mesh(const std::vector<Point>& points, const Soup& soup, Mesh& mesh) {
+    if (!PMP::is_polygon_soup_a_polygon_mesh(soup)) return false;
+    PMP::polygon_soup_to_polygon_mesh(points, soup, mesh);
+    return CGAL::is_closed(mesh);
+}
+
+Mesh cell_mesh(const Cell& cell, const std::vector<Vec3>& pushed, double nudge, const char** why) {
+    std::map<uint32_t, size_t> index;
+    std::vector<Vec3> at;
+    Soup soup;
+    for (const Tri& t : cell.triangles) {
+        std::array<size_t, 3> f;
+        for (int k = 0; k < 3; ++k) {
+            auto [it, fresh] = index.emplace(t[k], at.size());
+            if (fresh) at.push_back(pushed[t[k]]);
+            f[k] = it->second;
+        }
+        soup.push_back(f);
+    }
+    std::vector<Point> points;
+    for (const Vec3& v : separate_sheets(at, soup, nudge)) points.emplace_back(v.x(), v.y(), v.z());
+    Mesh mesh;
+    if (!soup_to_mesh(points, soup, mesh))
+        *why = "its cell is not a closed surface";
+    else if (PMP::does_self_intersect(mesh))
+        *why = "its cell self-intersects";
+    return mesh;
+}
+
+struct Input {
+    const TriangleMesh& mesh;
+    std::vector<Vec3> corner_normal;
+    std::vector<STriangle> triangles;
+    Tree tree;
+};
+
+std::vector<Vec3> pushed_vertices(const Model& model, const std::vector<Vec3>& normal, double margin) {
+    std::vector<Vec3> out = model.mesh.vertices;
+    for (size_t i = 0; i < out.size(); ++i) out[i] += margin * normal[i];
+    return out;
+}
+
+Vec3 barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = (b - a).cross(c - a);
+    const double nn = n.squaredNorm();
+    if (!(nn > 0)) return Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3);
+    Vec3 w((c - b).cross(p - b).dot(n) / nn, (a - c).cross(p - c).dot(n) / nn, 0);
+    w.z() = 1 - w.x() - w.y();
+    w = w.cwiseMax(0.0);
+    return w / std::max(w.sum(), 1e-300);
+}
+
+// The cut result as a render surface (see the file comment for how faces are told apart).
+RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const std::vector<Vec3>& pushed,
+                      double eps) {
+    RenderSurface rs;
+    std::map<std::tuple<size_t, double, double, double>, uint32_t> index;
+    auto corner = [&](size_t v, const Vec3& p, const Vec3& n) {
+        auto [it, fresh] = index.emplace(std::make_tuple(v, n.x(), n.y(), n.z()), uint32_t(rs.vertices.size()));
+        if (fresh) {
+            rs.vertices.push_back(p);
+            rs.normals.push_back(n);
+        }
+        return it->second;
+    };
+    for (auto f : out.faces()) {
+        std::array<size_t, 3> vi;
+        std::array<Vec3, 3> p;
+        int k = 0;
+        for (auto v : CGAL::vertices_around_face(out.halfedge(f), out)) {
+            if (k == 3) break;
+            vi[k] = size_t(v);
+            p[k++] = vec(out.point(v));
+        }
+        if (k != 3) continue;
+        const Vec3 centre = (p[0] + p[1] + p[2]) / 3;
+        const auto hit = in.tree.closest_point_and_primitive(spoint(centre));
+        const Vec3 q(hit.first.x(), hit.first.y(), hit.first.z());
+        Tri tri;
+        if ((q - centre).norm() <= eps) {
+            const size_t t = size_t(hit.second - in.triangles.cbegin());
+            const Tri& src = in.mesh.triangles[t];
+            const auto& iv = in.mesh.vertices;
+            for (int c = 0; c < 3; ++c) {
+                const Vec3 w = barycentric(p[c], iv[src[0]], iv[src[1]], iv[src[2]]);
+                Vec3 n = w[0] * in.corner_normal[3 * t] + w[1] * in.corner_normal[3 * t + 1] +
+                         w[2] * in.corner_normal[3 * t + 2];
+                n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 1, 0);
+                tri[c] = corner(vi[c], p[c], n);
+            }
+            rs.kinds.push_back(FaceKind::Outer);
+        } else {
+            double best = std::numeric_limits<double>::infinity();
+            FaceKind kind = FaceKind::Fracture;
+            for (size_t c = 0; c < cell.triangles.size(); ++c) {
+                const Tri& ct = cell.triangles[c];
+                const STriangle st(spoint(pushed[ct[0]]), spoint(pushed[ct[1]]), spoint(pushed[ct[2]]));
+                const double d = CGAL::squared_distance(st, spoint(centre));
+                if (d < best) best = d, kind = cell.kinds[c];
+            }
+            Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
+            n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 1, 0);
+            for (int c = 0; c < 3; ++c) tri[c] = corner(vi[c], p[c], n);
+            rs.kinds.push_back(kind);
+        }
+        rs.triangles.push_back(tri);
+    }
+    return rs;
+}
+
+}  // namespace
+
+std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
+                                           const RenderSurfaceSettings& settings) {
+    const TetTopology topo = build_topology(model.mesh);
+    const std::vector<Cell> cells = cells_of(model, topo);
+    Input in{input, corner_normals(input, settings.crease_degrees), {}, {}};
+    in.triangles.reserve(input.triangles.size());
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Tri& t : input.triangles)
+        in.triangles.emplace_back(spoint(input.vertices[t[0]]), spoint(input.vertices[t[1]]), spoint(input.vertices[t[2]]));
+    for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    in.tree.rebuild(in.triangles.cbegin(), in.triangles.cend());
+    in.tree.accelerate_distance_queries();
+    const double eps = 1e-7 * (hi - lo).norm();
+
+    std::vector<Point> points;
+    for (const Vec3& v : input.vertices) points.emplace_back(v.x(), v.y(), v.z());
+    Soup soup;
+    for (const Tri& t : input.triangles) soup.push_back({t[0], t[1], t[2]});
+    Mesh whole;
+    const bool input_ok = !input.triangles.empty() && soup_to_mesh(points, soup, whole);
+
+    // The largest margin of the ladder at which every cell is a valid closed surface (fewest
+    // failures otherwise, the larger margin on a tie).
+    const std::vector<Vec3> normal = outer_normals(model, cells);
+    const double nudge = 1e-5 * (hi - lo).norm();
+    std::vector<Vec3> pushed;
+    std::vector<Mesh> cell(model.pieces.size());
+    std::vector<const char*> why(model.pieces.size());
+    size_t best_failures = SIZE_MAX;
+    for (double factor : {1.0, 0.7, 0.5, 0.35}) {
+        std::vector<Vec3> try_pushed = pushed_vertices(model, normal, factor * settings.margin);
+        std::vector<Mesh> try_cell(model.pieces.size());
+        std::vector<const char*> try_why(model.pieces.size(), input_ok ? nullptr : "the input is not a closed polygon mesh");
+        size_t failures = 0;
+        for (size_t p = 0; p < model.pieces.size(); ++p) {
+            if (!try_why[p]) try_cell[p] = cell_mesh(cells[p], try_pushed, nudge, &try_why[p]);
+            failures += try_why[p] != nullptr;
+        }
+        if (failures < best_failures) {
+            best_failures = failures;
+            pushed = std::move(try_pushed), cell = std::move(try_cell), why = std::move(try_why);
+            if (failures > 0) spdlog::debug("render surfaces: margin {:.4g} m leaves {} bad cells", factor * settings.margin, failures);
+        }
+        if (failures == 0 || !input_ok) break;
+    }
+
+    std::vector<RenderSurface> out;
+    size_t fell_back = 0;
+    for (size_t p = 0; p < model.pieces.size(); ++p) {
+        Mesh cut;
+        if (!why[p]) {
+            Mesh a = whole;
+            try {
+                if (!PMP::corefine_and_compute_intersection(a, cell[p], cut)) why[p] = "the cut failed";
+                else if (cut.number_of_faces() == 0) why[p] = "the cut is empty";
+            } catch (const std::exception&) {
+                why[p] = "the cut threw";
+            }
+        }
+        if (!why[p]) {
+            out.push_back(collect(cut, in, cells[p], pushed, eps));
+        } else {
+            spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
+            out.push_back(flat_render_surface(model.pieces[p].surface));
+            ++fell_back;
+        }
+    }
+    if (fell_back) spdlog::info("render surfaces: {} of {} pieces keep their tet surface", fell_back, out.size());
+    return out;
+}
+
+}  // namespace shatter
