@@ -188,7 +188,6 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
                              debugDrawer);
     extra_ = false;
     most_iterations_ = btMax(most_iterations_, iteration);
-    most_residual_ = btMax(most_residual_, double(joint_residual_));
     return 0;
 }
 

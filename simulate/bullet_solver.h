@@ -34,11 +34,9 @@ public:
         max_iterations_ = max_iterations;
     }
     // Over the solves since reset_counts() (Bullet solves islands in batches, each its own call):
-    // the most iterations one took, and the largest joint residual left after its iterations
-    // (converge() on; else 0).
-    void reset_counts() { most_iterations_ = 0, most_residual_ = 0; }
+    // the most iterations one took.
+    void reset_counts() { most_iterations_ = 0; }
     int most_iterations() const { return most_iterations_; }
-    double most_residual() const { return most_residual_; }
 
 protected:
     btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
@@ -63,7 +61,6 @@ private:
     btAlignedObjectArray<btScalar> row_scale_;  // per joint row: 1 / (h CFM strength)
     btScalar joint_residual_ = 0;        // of the current iteration
     int most_iterations_ = 0;
-    double most_residual_ = 0;
 };
 
 }  // namespace shatter

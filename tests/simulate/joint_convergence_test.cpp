@@ -25,6 +25,7 @@ struct ChainLoad {
     double first_overload = -1;  // when the first joint's force reached its strength (unit: s)
     double most_residual = 0;    // largest |f - k d| / strength of any joint in any step before it
     double spread = 0;           // (max - min) of the joints' k |d| 2 ms before it, over the strength
+    int most_iterations = 0;     // the solver's, in one step
 };
 
 ChainLoad load_chain(double tolerance) {
@@ -39,6 +40,7 @@ ChainLoad load_chain(double tolerance) {
     const size_t lookback = size_t(std::lround(0.002 / h));
     while (world.time() < 0.5) {
         world.step();
+        out.most_iterations = std::max(out.most_iterations, world.last_step_iterations());
         std::vector<double> t;
         bool overloaded = false;
         for (size_t c = 0; c < world.constraint_count(); ++c) {
@@ -60,8 +62,8 @@ ChainLoad load_chain(double tolerance) {
         }
     }
     std::printf("chain, convergence tolerance %g: first overload %.5f s, residual up to %.4f, tension spread %.4f "
-                "(of the strength)\n",
-                tolerance, out.first_overload, out.most_residual, out.spread);
+                "(of the strength), up to %d iterations a step\n",
+                tolerance, out.first_overload, out.most_residual, out.spread, out.most_iterations);
     return out;
 }
 
@@ -75,6 +77,9 @@ TEST(JointConvergence, TheChainsJointsCarryOneTensionWhenTheSolveConverges) {
     // The ends start apart at 0.3 s; the converged chain reaches 4,000 N 8.6 ms later
     // (docs/physics.md, "Joint convergence": the same at 200 and 2,000 fixed iterations).
     EXPECT_NEAR(converged.first_overload, 0.3086, 0.001);
+    // It took more than the shot's 20 iterations in some steps, within the cap.
+    EXPECT_GT(converged.most_iterations, 20);
+    EXPECT_LE(converged.most_iterations, 2000);
 }
 
 TEST(JointConvergence, TheResidualShowsAChainSolvedWithTooFewIterations) {
@@ -85,6 +90,7 @@ TEST(JointConvergence, TheResidualShowsAChainSolvedWithTooFewIterations) {
     EXPECT_GT(fixed.most_residual, 1.0);
     EXPECT_GT(fixed.spread, 0.5);
     EXPECT_GT(fixed.first_overload, 0.3086 + 0.005);
+    EXPECT_EQ(fixed.most_iterations, 20);
 }
 
 }  // namespace
