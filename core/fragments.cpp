@@ -1,10 +1,17 @@
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "core/fragments.h"
 #include "core/model.h"
 
 namespace shatter {
+
+double piece_radius(const Piece& piece) {
+    double r2 = 0;
+    for (const Vec3& v : piece.surface.vertices) r2 = std::max(r2, (v - piece.mass.center).squaredNorm());
+    return std::sqrt(r2);
+}
 
 size_t count_fragments(const Model& model, const std::vector<bool>& broken) {
     std::vector<uint32_t> parent(model.pieces.size());

@@ -65,6 +65,10 @@ struct Model {
     std::vector<Constraint> constraints;  // sorted by (piece_a, piece_b, vertex)
 };
 
+// The radius of a piece's surface about its centre of mass (unit: m): the farthest any point of
+// it is from the point it turns about.
+double piece_radius(const Piece& piece);
+
 // How many groups of pieces the constraints that are not `broken` (one flag per constraint) still
 // hold together: the fragments. Pieces joined to nothing count one each.
 size_t count_fragments(const Model& model, const std::vector<bool>& broken);

@@ -4,12 +4,6 @@
 
 namespace shatter {
 
-double piece_radius(const Piece& piece) {
-    double r2 = 0;
-    for (const Vec3& v : piece.surface.vertices) r2 = std::max(r2, (v - piece.mass.center).squaredNorm());
-    return std::sqrt(r2);
-}
-
 double shape_radius(const ShapeSettings& shape) {
     switch (shape.kind) {
         case ShapeKind::Box: return shape.size.norm() / 2;

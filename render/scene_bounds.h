@@ -13,8 +13,6 @@
 
 namespace shatter {
 
-// Radius of a piece's surface about its centre of mass (unit: m).
-double piece_radius(const Piece& piece);
 // Radius of a shape about its origin (unit: m); 0 for a plane or a mesh.
 double shape_radius(const ShapeSettings& shape);
 

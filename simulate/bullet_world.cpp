@@ -306,8 +306,7 @@ void BulletWorld::build_pieces(const Model& model) {
         // spinning_A mu_B + spinning_B mu_A, so each piece's spinning friction is (2/3) a, with a
         // a quarter of its radius. Bullet adds the torsional row only with rolling friction, which
         // gets a rolling resistance of 1% of the radius (docs/physics.md section 6).
-        double radius = 0;
-        for (const Vec3& v : piece.surface.vertices) radius = std::max(radius, (v - piece.mass.center).norm());
+        const double radius = piece_radius(piece);
         body->setSpinningFriction(btScalar(2.0 / 3.0 * kContactPatch * radius));
         body->setRollingFriction(btScalar(kRollingResistance * radius));
         body->setUserIndex(int(i));

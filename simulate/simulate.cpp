@@ -221,9 +221,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // ((|dx| + angle r) x fps) against kRestSpeed. The recorded motion, not the velocities of the
     // frame's last step: a piece resting on others jitters at a few cm/s while it stays put.
     std::vector<double> radius(world.pieces(), 0.0);
-    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i)
-        for (const Vec3& v : model.pieces[i].surface.vertices)
-            radius[i] = std::max(radius[i], (v - model.pieces[i].mass.center).norm());
+    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
     auto at_rest = [&](uint32_t f) {
         for (uint32_t i = 0; i < world.pieces(); ++i) {
             if (!world.piece_dynamic(i)) continue;
