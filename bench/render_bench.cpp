@@ -16,7 +16,7 @@
 #include "core/shot.h"
 #include "prescore/prescore.h"
 #include "render/render.h"
-#include "tests/render/render_test_scene.h"
+#include "scenes/render_test_scene.h"
 
 using namespace shatter;
 

@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "prescore/prescore.h"
 #include "prescore/repair.h"
 #include "prescore/render_surface.h"

@@ -14,11 +14,11 @@
 
 #include "core/shot.h"
 #include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "prescore/prescore.h"
 #include "prescore/render_surface.h"
 #include "render/render.h"
-#include "tests/render/render_test_scene.h"
+#include "scenes/render_test_scene.h"
 
 using namespace shatter;
 

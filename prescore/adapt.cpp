@@ -11,7 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
-#include "prescore/isolated.h"
+#include "core/isolated.h"
 #include "prescore/repair.h"
 #include "prescore/tetrahedralize.h"
 
@@ -88,7 +88,7 @@ TetMesh deserialize(const std::string& bytes) {
     return m;
 }
 
-// Mesh_3 at one resolution, in a child process (prescore/isolated.h): an empty mesh when it made
+// Mesh_3 at one resolution, in a child process (core/isolated.h): an empty mesh when it made
 // no tets, nullopt when it hit its vertex budget, ran past kMeshSeconds, or crashed twice (the
 // second time without protected sharp creases, where its crashes were seen: elk.off).
 std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrapped, double diagonal,

@@ -18,7 +18,7 @@
 #include "prescore/constraints.h"
 #include "prescore/hollow.h"
 #include "prescore/mass_properties.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "prescore/partition.h"
 #include "prescore/piece_surface.h"
 #include "prescore/repair.h"

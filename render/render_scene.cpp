@@ -8,7 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/binary_io.h"
 #include "core/error.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "render/render.h"
 
 namespace shatter {

@@ -36,7 +36,7 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppress
 if command -v llvm-symbolizer > /dev/null 2>&1; then export ASAN_SYMBOLIZER_PATH="$(command -v llvm-symbolizer)"; fi
 log="$BUILD_DIR/asan-ctest.log"
 status=0
-# Imports run ~20x slower under ASan than the reader's deadline allows for (prescore/mesh_load.cpp).
+# Imports run ~20x slower under ASan than the reader's deadline allows for (meshio/mesh_load.cpp).
 export SHATTER_MESH_IMPORT_TIMEOUT=${SHATTER_MESH_IMPORT_TIMEOUT:-600}
 (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" --timeout 900 "$@") 2>&1 | tee "$log" || status=$?
 done_at=$(date +%s)

@@ -11,7 +11,7 @@
 #include <functional>
 
 #include "core/error.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "simulate/bullet_collision.h"
 #include "simulate/bullet_convert.h"
 #include "simulate/bullet_shapes.h"

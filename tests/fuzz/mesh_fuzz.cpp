@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "tests/fuzz/fuzz_support.h"
 
 namespace {
@@ -23,7 +23,7 @@ constexpr size_t kMaxCheckedTriangles = 20000;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // A reader that spins is killed at the import deadline and the file refused, as in
-    // `shatter prescore` (prescore/mesh_load.cpp); here the deadline is 2 s, under libFuzzer's
+    // `shatter prescore` (meshio/mesh_load.cpp); here the deadline is 2 s, under libFuzzer's
     // 10 s hang limit, so that the target checks what shatter does with such a file.
     static const bool deadline_set = ::setenv("SHATTER_MESH_IMPORT_TIMEOUT", "2", 0) == 0;
     (void)deadline_set;

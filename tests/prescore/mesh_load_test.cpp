@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 
 namespace shatter {
 namespace {

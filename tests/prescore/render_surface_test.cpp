@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "prescore/prescore.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"

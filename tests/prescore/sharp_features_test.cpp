@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 #include "prescore/sharp_features.h"
 #include "tet_test_meshes.h"
 

@@ -9,7 +9,7 @@
 #include "render/gl_context.h"
 #include "render/png_io.h"
 #include "render/srgb_encode.h"
-#include "render_test_scene.h"
+#include "scenes/render_test_scene.h"
 #include "support/temp_dir.h"
 
 namespace shatter {

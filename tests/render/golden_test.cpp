@@ -1,4 +1,4 @@
-// Golden images: three frames of the small test scene (tests/render/render_test_scene.h) at
+// Golden images: three frames of the small test scene (scenes/render_test_scene.h) at
 // 320x180 through the whole pipeline (render_frames, PNG writer), compared with the committed
 // goldens in tests/golden/render/ by the project's own diff at a stated tolerance:
 //   RMSE <= 1.5 levels, SSIM >= 0.98, at most 0.5% of pixels off by more than 24 levels.
@@ -15,7 +15,7 @@
 
 #include "render/diff_report.h"
 #include "render/png_io.h"
-#include "render_test_scene.h"
+#include "scenes/render_test_scene.h"
 #include "support/temp_dir.h"
 
 namespace shatter {

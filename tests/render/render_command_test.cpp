@@ -9,7 +9,7 @@
 
 #include "core/scene_settings.h"
 #include "render/png_io.h"
-#include "render_test_scene.h"
+#include "scenes/render_test_scene.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 

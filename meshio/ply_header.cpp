@@ -1,5 +1,5 @@
 // The PLY header check. Why it exists: ply_header.h.
-#include "prescore/ply_header.h"
+#include "meshio/ply_header.h"
 
 #include <algorithm>
 #include <array>

@@ -1,5 +1,5 @@
 // A library call in a child process. Why: isolated.h.
-#include "prescore/isolated.h"
+#include "core/isolated.h"
 
 #include <poll.h>
 #include <sys/wait.h>

@@ -5,7 +5,7 @@
 //   1. refuses a missing path or a directory before assimp sees it;
 //   2. assimp imports the file, in a child process (a crash inside assimp on a malformed file
 //      becomes a BadInput error, not a signal; a file that starts like a PLY has its header
-//      checked first, prescore/ply_header.h); a scene without triangles or polygons is refused with a plain
+//      checked first, meshio/ply_header.h); a scene without triangles or polygons is refused with a plain
 //      message, then assimp validates it (ValidateDataStructure: indices in range, ...) and
 //      runs Triangulate + JoinIdenticalVertices (normals, UVs, colours removed first, so
 //      vertices are joined on position alone);

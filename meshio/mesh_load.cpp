@@ -1,5 +1,5 @@
 // Loads a mesh with assimp and merges it into one TriangleMesh. Design notes: mesh_load.h.
-#include "prescore/mesh_load.h"
+#include "meshio/mesh_load.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -19,8 +19,8 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "prescore/isolated.h"
-#include "prescore/ply_header.h"
+#include "core/isolated.h"
+#include "meshio/ply_header.h"
 
 namespace shatter {
 namespace {
@@ -242,7 +242,7 @@ LoadedMesh import_in_process(const std::string& path) {
     return loaded;
 }
 
-// The import runs in a child process (prescore/isolated.h): Debian's assimp 5.2 crashes (SIGSEGV)
+// The import runs in a child process (core/isolated.h): Debian's assimp 5.2 crashes (SIGSEGV)
 // on some malformed files (found by tests/fuzz/mesh_fuzz.cpp: an OFF face with an index far out
 // of range; PLY headers, see ply_header.h), and its PLY reader spun for ever on a header with no
 // end_header. A child that dies or passes its deadline is a bad file (exit code 3) whose message
@@ -311,7 +311,7 @@ LoadedMesh import_isolated(const std::string& path, const std::string& format_fi
 
 LoadedMesh load_mesh_file(const std::string& path) {
     check_path(path);
-    // assimp crashes on some malformed PLY headers (prescore/ply_header.h): check them first.
+    // assimp crashes on some malformed PLY headers (meshio/ply_header.h): check them first.
     if (const std::string head = read_file_head(path); looks_like_ply(head)) check_ply_header(head, path);
 
     const std::string format_fix =

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "prescore/ply_header.h"
+#include "meshio/ply_header.h"
 
 namespace shatter {
 namespace {
