@@ -128,22 +128,8 @@ public:
         LogFile log((dir_ / "run.log").string());
         spdlog::info("run: {} -> {}{}", options_.shot, dir_.string(),
                      options_.overrides.empty() ? "" : fmt::format(" (--set {})", fmt::join(options_.overrides, " ")));
-        prescore_stage();
-        simulate_stage();
-        render_stage();
-        finishing_stage(Stage::Encode, {name_ + ".mp4"}, [&] { return json{{"render", render_key()}}; },
-                        [&] { encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4")); });
-        finishing_stage(Stage::Sheet, {name_ + ".contact.png"}, [&] { return json{{"render", render_key()}}; },
-                        [&] { write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png")); });
-        finishing_stage(Stage::Plot, {name_ + ".energy.png"},
-                        [&] { return json{{"energy", file_hash(file(".energy.csv"))}, {"title", name_}}; },
-                        [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); });
-        finishing_stage(Stage::Export, {name_ + ".glb"},
-                        [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}}; },
-                        [&] { export_glb(model(), trajectory(), file(".glb"), &shot_.render); });
-        write_summary();
-        finishing_stage(Stage::Report, report_stage_outputs(), [&] { return report_stage_inputs(dir_.string(), name_, shot_, result_.summary); },
-                        [&] { write_report(dir_.string(), name_, shot_, result_.summary); });
+        steps_ = steps();
+        for (const StageStep& step : steps_) run_step(step);
         write_report_times(dir_.string(), result_.stages);
         return std::move(result_);
     }
@@ -153,11 +139,11 @@ public:
     // checked: they are cheap and always left to the final job.
     std::vector<Stage> up_to_date() {
         std::vector<Stage> out;
-        if (!stamps_.current("prescore", stage_key("prescore", prescore_inputs()))) return out;
-        out.push_back(Stage::Prescore);
-        if (!simulate_current(stage_key("simulate", simulate_inputs()))) return out;
-        out.push_back(Stage::Simulate);
-        if (stamps_.current("render", render_key()) && all_frames_present()) out.push_back(Stage::Render);
+        steps_ = steps();
+        for (const StageStep& step : steps_) {
+            if (step.kind == StageKind::Finishing || !current(step, key_of(step))) break;
+            out.push_back(step.stage);
+        }
         return out;
     }
 
@@ -198,6 +184,142 @@ private:
                                 "--stages {})", dir_.string(), what, options_.shot, dir_.string(), to_string(s)));
     }
 
+    // ---- the run as a list of stages, run by one loop (run_step)
+    enum class StageKind {
+        Shared,     // prescore, simulate: outputs shared through the cache; an error ends the run
+        Frames,     // render: frames drawn into frames/, a chunk at a time; an error ends the run
+        Finishing,  // encode, sheet, plot, export, report: an error is reported and the run goes on
+    };
+    struct StageStep {
+        Stage stage;
+        StageKind kind;
+        std::function<json()> inputs;   // what the stage's key is made of
+        StageCache::Files files = {};   // {name in the cache, name in the output folder} (Frames: none)
+        std::function<void()> compute;  // writes the outputs
+        const char* what = "";          // the outputs, for "... is missing or out of date"
+        bool needs_frames = false;      // a finishing stage that reads the frames
+        std::function<void()> before = {};  // runs at the stage's place, asked or not
+        std::function<void()> after = {};   // runs after the stage when it was asked
+    };
+
+    std::vector<StageStep> steps() {
+        return {
+            {.stage = Stage::Prescore, .kind = StageKind::Shared, .inputs = [&] { return prescore_inputs(); },
+             .files = {{"model", name_ + ".model"}, {"pieces.ply", name_ + ".pieces.ply"}},
+             .compute = [&] { compute_prescore(); }, .what = "the model"},
+            {.stage = Stage::Simulate, .kind = StageKind::Shared, .inputs = [&] { return simulate_inputs(); },
+             .files = {{"traj", name_ + ".traj"}, {"breaks.jsonl", name_ + ".breaks.jsonl"},
+                       {"energy.csv", name_ + ".energy.csv"}, {"instability.json", name_ + ".instability.json"}},
+             .compute = [&] { compute_simulate(); }, .what = "the trajectory", .after = [&] { report_instability(); }},
+            {.stage = Stage::Render, .kind = StageKind::Frames, .inputs = [&] { return render_inputs(); },
+             .compute = [&] { compute_render(); }, .what = "the frames"},
+            {.stage = Stage::Encode, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
+             .files = {{"", name_ + ".mp4"}},
+             .compute = [&] { encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4")); },
+             .what = "the movie", .needs_frames = true},
+            {.stage = Stage::Sheet, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
+             .files = {{"", name_ + ".contact.png"}},
+             .compute = [&] { write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png")); },
+             .what = "the contact sheet", .needs_frames = true},
+            {.stage = Stage::Plot, .kind = StageKind::Finishing,
+             .inputs = [&] { return json{{"energy", file_hash(file(".energy.csv"))}, {"title", name_}}; },
+             .files = {{"", name_ + ".energy.png"}},
+             .compute = [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); },
+             .what = "the energy plot"},
+            {.stage = Stage::Export, .kind = StageKind::Finishing,
+             .inputs = [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}}; },
+             .files = {{"", name_ + ".glb"}},
+             .compute = [&] { export_glb(model(), trajectory(), file(".glb"), &shot_.render); }, .what = "the glTF file"},
+            // summary.json is written at the report's place, whether the report is asked or not.
+            {.stage = Stage::Report, .kind = StageKind::Finishing,
+             .inputs = [&] { return report_stage_inputs(dir_.string(), name_, shot_, result_.summary); },
+             .files = report_files(), .compute = [&] { write_report(dir_.string(), name_, shot_, result_.summary); },
+             .what = "the report", .before = [&] { write_summary(); }},
+        };
+    }
+    StageCache::Files report_files() const {
+        StageCache::Files files;
+        for (const std::string& f : report_stage_outputs()) files.push_back({"", f});
+        return files;
+    }
+    std::string key_of(const StageStep& step) {
+        return step.kind == StageKind::Frames ? render_key() : stage_key(to_string(step.stage), step.inputs());
+    }
+    std::vector<std::string> output_names(const StageStep& step) const {
+        std::vector<std::string> names;
+        for (const auto& [cached, name] : step.files) names.push_back(name);
+        return names;
+    }
+    // The stamp holds `key` and every output is there (the stamp lists the files it hashed; an
+    // output it does not list, or that is gone, makes the stage run again).
+    bool current(const StageStep& step, const std::string& key) {
+        if (!stamps_.current(to_string(step.stage), key)) return false;
+        if (step.kind == StageKind::Frames) return all_frames_present();
+        std::error_code ec;
+        for (const std::string& name : output_names(step))
+            if (!fs::exists(dir_ / name, ec)) return false;
+        return true;
+    }
+
+    void run_step(const StageStep& step) {
+        StageReport& r = report(step.stage);
+        if (step.before) step.before();
+        const bool finishing = step.kind == StageKind::Finishing;
+        if (!asked(step.stage) && (finishing || !needed_later(step.stage))) return;
+        const auto start = std::chrono::steady_clock::now();
+        const std::string name = to_string(step.stage);
+        try {
+            if (step.needs_frames && !current(step_of(Stage::Render), render_key())) missing(Stage::Render, "the frames");
+            const std::string key = key_of(step);
+            const bool is_current = current(step, key);
+            if (!asked(step.stage)) {  // needed by a later stage
+                if (!is_current) missing(step.stage, step.what);
+                return;
+            }
+            if (is_current && !options_.force) {
+                r.outcome = StageOutcome::UpToDate;
+            } else {
+                stamps_.remove(name);
+                r.outcome = step.kind == StageKind::Shared ? compute_shared(step, key) : compute_local(step, key);
+            }
+        } catch (const Error& e) {
+            if (!finishing) throw;
+            r.outcome = StageOutcome::Failed;
+            r.error = e.what();
+            spdlog::error("{}: {}", name, e.what());
+            if (result_.exit_code == 0) result_.exit_code = static_cast<int>(e.code());
+        }
+        r.seconds = seconds_since(start);
+        log_outcome(r);
+        if (step.after) step.after();
+    }
+    const StageStep& step_of(Stage s) const { return steps_.at(size_t(s)); }
+    // Shared stages: another worker may be computing the same key (the cache's lock), or have
+    // computed it (fetched from the cache).
+    StageOutcome compute_shared(const StageStep& step, const std::string& key) {
+        const std::string name = to_string(step.stage);
+        std::optional<FileLock> lock;
+        if (cache_.enabled()) {
+            lock.emplace(cache_.lock_path(name, key));
+            if (!options_.force && cache_.fetch(name, key, dir_.string(), step.files)) {
+                stamps_.write(name, key, output_names(step));
+                return StageOutcome::FromCache;
+            }
+        }
+        step.compute();
+        cache_.store(name, key, dir_.string(), step.files);
+        stamps_.write(name, key, output_names(step));
+        return StageOutcome::Ran;
+    }
+    // Render (stamped once every frame is there: a chunk of a cluster job draws only its own)
+    // and the finishing stages.
+    StageOutcome compute_local(const StageStep& step, const std::string& key) {
+        step.compute();
+        if (step.kind != StageKind::Frames) stamps_.write(to_string(step.stage), key, output_names(step));
+        else if (all_frames_present()) stamps_.write(to_string(step.stage), key, {});
+        return StageOutcome::Ran;
+    }
+
     // ---- prescore
     json prescore_inputs() const {
         json mesh = to_json(shot_.mesh);
@@ -210,47 +332,13 @@ private:
         if (shot_.generate) inputs["generate"] = to_json(*shot_.generate);
         return inputs;
     }
-    void prescore_stage() {
-        StageReport& r = report(Stage::Prescore);
-        if (!asked(Stage::Prescore) && !needed_later(Stage::Prescore)) return;
-        const auto start = std::chrono::steady_clock::now();
-        const std::string key = stage_key("prescore", prescore_inputs());
-        const StageCache::Files files = {{"model", name_ + ".model"}, {"pieces.ply", name_ + ".pieces.ply"}};
-        if (!asked(Stage::Prescore)) {
-            if (!stamps_.current("prescore", key)) missing(Stage::Prescore, "the model");
-            return;
-        }
-        r.outcome = cached_stage("prescore", key, files, [&] {
-            PrescoreReport report;
-            const Model model = prescore_shot(shot_, &report);
-            save_model(file(".model"), model);
-            write_file_atomic(file(".pieces.ply"), pieces_ply(model));
-            spdlog::info("prescore: {} pieces, {} tets, {} constraints", model.pieces.size(), model.mesh.tets.size(),
-                         model.constraints.size());
-        });
-        r.seconds = seconds_since(start);
-        log_outcome(r);
-    }
-
-    // Runs `compute` unless the stamp is current or the shared cache has the outputs.
-    StageOutcome cached_stage(const std::string& stage, const std::string& key, const StageCache::Files& files,
-                              const std::function<void()>& compute) {
-        std::vector<std::string> names;
-        for (const auto& [cached, name] : files) names.push_back(name);
-        if (!options_.force && stamps_.current(stage, key)) return StageOutcome::UpToDate;
-        stamps_.remove(stage);
-        std::optional<FileLock> lock;
-        if (cache_.enabled()) {
-            lock.emplace(cache_.lock_path(stage, key));
-            if (!options_.force && cache_.fetch(stage, key, dir_.string(), files)) {
-                stamps_.write(stage, key, names);
-                return StageOutcome::FromCache;
-            }
-        }
-        compute();
-        cache_.store(stage, key, dir_.string(), files);
-        stamps_.write(stage, key, names);
-        return StageOutcome::Ran;
+    void compute_prescore() {
+        PrescoreReport report;
+        const Model model = prescore_shot(shot_, &report);
+        save_model(file(".model"), model);
+        write_file_atomic(file(".pieces.ply"), pieces_ply(model));
+        spdlog::info("prescore: {} pieces, {} tets, {} constraints", model.pieces.size(), model.mesh.tets.size(),
+                     model.constraints.size());
     }
 
     const std::string& model_hash() {
@@ -270,38 +358,18 @@ private:
         return {{"model", model_hash()},       {"scene", to_json(shot_.scene)},       {"collider_meshes", colliders},
                 {"object", to_json(shot_.object)}, {"material", to_json(shot_.material)}, {"simulate", to_json(shot_.simulate)}};
     }
-    // A simulate stamp from before NAME.instability.json existed does not list it: not current.
-    bool simulate_current(const std::string& key) const {
-        std::error_code ec;
-        return stamps_.current("simulate", key) && fs::exists(file(".instability.json"), ec);
+    void compute_simulate() {
+        const SimulationInput input{shot_.scene, shot_.object, shot_.material, shot_.simulate};
+        const SimulationResult sim = simulate(model(), input, model_hash());
+        save_trajectory(file(".traj"), sim.trajectory);
+        write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
+        write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
+        write_file_atomic(file(".instability.json"), instability_record(shot_.simulate.on_instability, sim).dump(2) + "\n");
+        spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke", sim.trajectory.frames(), sim.steps,
+                     sim.breaks.size(), model().constraints.size());
     }
-    void simulate_stage() {
-        StageReport& r = report(Stage::Simulate);
-        if (!asked(Stage::Simulate) && !needed_later(Stage::Simulate)) return;
-        const auto start = std::chrono::steady_clock::now();
-        const std::string key = stage_key("simulate", simulate_inputs());
-        const StageCache::Files files = {{"traj", name_ + ".traj"},
-                                         {"breaks.jsonl", name_ + ".breaks.jsonl"},
-                                         {"energy.csv", name_ + ".energy.csv"},
-                                         {"instability.json", name_ + ".instability.json"}};
-        if (!simulate_current(key)) {
-            if (!asked(Stage::Simulate)) missing(Stage::Simulate, "the trajectory");
-            stamps_.remove("simulate");
-        }
-        if (!asked(Stage::Simulate)) return;
-        r.outcome = cached_stage("simulate", key, files, [&] {
-            const SimulationInput input{shot_.scene, shot_.object, shot_.material, shot_.simulate};
-            const SimulationResult sim = simulate(model(), input, model_hash());
-            save_trajectory(file(".traj"), sim.trajectory);
-            write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
-            write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
-            write_file_atomic(file(".instability.json"),
-                              instability_record(shot_.simulate.on_instability, sim).dump(2) + "\n");
-            spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke", sim.trajectory.frames(), sim.steps,
-                         sim.breaks.size(), model().constraints.size());
-        });
-        r.seconds = seconds_since(start);
-        log_outcome(r);
+    // After simulate (ran or up to date): what the instability guard did, and an incomplete run's exit code.
+    void report_instability() {
         const json& record = instability();
         if (record.at("clamps").get<uint64_t>() > 0)
             spdlog::warn("simulate: {} (on_instability = clamp), the first {}",
@@ -331,10 +399,11 @@ private:
     }
 
     // ---- render
+    json render_inputs() {
+        return {{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}};
+    }
     const std::string& render_key() {
-        if (render_key_.empty())
-            render_key_ = stage_key("render", {{"model", model_hash()}, {"trajectory", trajectory_hash()},
-                                               {"render", to_json(shot_.render)}});
+        if (render_key_.empty()) render_key_ = stage_key("render", render_inputs());
         return render_key_;
     }
     bool all_frames_present() {
@@ -356,81 +425,32 @@ private:
             if (entry.path().filename().string().rfind("frame_", 0) == 0) fs::remove(entry.path(), ec);
         write_file_atomic(key_file.string(), render_key() + "\n");
     }
-    void render_stage() {
-        StageReport& r = report(Stage::Render);
-        if (!asked(Stage::Render) && !needed_later(Stage::Render)) return;
-        const auto start = std::chrono::steady_clock::now();
-        const std::string& key = render_key();
-        const bool current = stamps_.current("render", key) && all_frames_present();
-        if (!asked(Stage::Render)) {
-            if (!current) missing(Stage::Render, "the frames");
-            return;
+    void compute_render() {
+        prepare_frames_dir();
+        const RenderScene scene = make_render_scene(model(), file(".model"), trajectory(), file(".traj"));
+        RenderOptions ro;
+        ro.progress = options_.progress;
+        ro.skip_existing = true;
+        ro.size_source = options_.shot + ": [render] width, height";
+        const auto [first, end] = chunk_frames(trajectory().frames(), options_.chunk, options_.chunks);
+        const FrameRange range{first, end};
+        if (range.first < range.end) {
+            const RenderReport rr = render_frames(scene, shot_.render, range, frames_dir(), ro);
+            spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first, range.end - 1,
+                         range.end - range.first - rr.frames);
         }
-        if (current && !options_.force) {
-            r.outcome = StageOutcome::UpToDate;
-        } else {
-            stamps_.remove("render");
-            prepare_frames_dir();
-            const Model& m = model();
-            const RenderScene scene = make_render_scene(m, file(".model"), trajectory(), file(".traj"));
-            RenderOptions ro;
-            ro.progress = options_.progress;
-            ro.skip_existing = true;
-            ro.size_source = options_.shot + ": [render] width, height";
-            const auto [first, end] = chunk_frames(trajectory().frames(), options_.chunk, options_.chunks);
-            const FrameRange range{first, end};
-            if (range.first < range.end) {
-                const RenderReport rr = render_frames(scene, shot_.render, range, frames_dir(), ro);
-                spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first,
-                             range.end - 1, range.end - range.first - rr.frames);
-            }
-            const CameraCoverage cover = camera_coverage(scene, shot_.render);
-            spdlog::info("render: camera {}: {:.0f}% of the pieces in view in the first frame, at least {:.0f}% in "
-                         "every frame (frame {}), {:.2f} s still at the end",
-                         shot_.render.camera_position ? "placed by the shot" : to_string(shot_.render.camera),
-                         100 * cover.first, 100 * cover.least, cover.least_frame, cover.still_at_end);
-            if (all_frames_present()) stamps_.write("render", key, {});
-            r.outcome = StageOutcome::Ran;
-        }
-        r.seconds = seconds_since(start);
-        log_outcome(r);
-    }
-
-    // ---- encode, sheet, plot, export: each needs the frames or the simulation; a failure is
-    // reported and the others still run.
-    void finishing_stage(Stage s, const std::vector<std::string>& outputs, const std::function<json()>& inputs,
-                         const std::function<void()>& make) {
-        StageReport& r = report(s);
-        if (!asked(s)) return;
-        const auto start = std::chrono::steady_clock::now();
-        try {
-            if (s == Stage::Encode || s == Stage::Sheet) {
-                if (!(stamps_.current("render", render_key()) && all_frames_present())) missing(Stage::Render, "the frames");
-            }
-            const std::string key = stage_key(to_string(s), inputs());
-            if (!options_.force && stamps_.current(to_string(s), key)) {
-                r.outcome = StageOutcome::UpToDate;
-            } else {
-                stamps_.remove(to_string(s));
-                make();
-                stamps_.write(to_string(s), key, outputs);
-                r.outcome = StageOutcome::Ran;
-            }
-        } catch (const Error& e) {
-            r.outcome = StageOutcome::Failed;
-            r.error = e.what();
-            spdlog::error("{}: {}", to_string(s), e.what());
-            if (result_.exit_code == 0) result_.exit_code = static_cast<int>(e.code());
-        }
-        r.seconds = seconds_since(start);
-        log_outcome(r);
+        const CameraCoverage cover = camera_coverage(scene, shot_.render);
+        spdlog::info("render: camera {}: {:.0f}% of the pieces in view in the first frame, at least {:.0f}% in "
+                     "every frame (frame {}), {:.2f} s still at the end",
+                     shot_.render.camera_position ? "placed by the shot" : to_string(shot_.render.camera), 100 * cover.first,
+                     100 * cover.least, cover.least_frame, cover.still_at_end);
     }
 
     // summary.json: what the run made, deterministic (no times; those are in run.log).
     void write_summary() {
         std::error_code ec;
         if (!fs::exists(file(".model"), ec) || !fs::exists(file(".traj"), ec) ||
-            !simulate_current(stage_key("simulate", simulate_inputs())))
+            !current(step_of(Stage::Simulate), stage_key("simulate", simulate_inputs())))
             return;
         const Model& m = model();
         size_t parts = 0;
@@ -468,6 +488,7 @@ private:
     std::optional<Model> model_;
     std::optional<Trajectory> trajectory_;
     std::optional<json> instability_;
+    std::vector<StageStep> steps_;
 };
 
 }  // namespace

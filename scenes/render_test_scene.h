@@ -1,7 +1,9 @@
-// The small scene the render tests, the golden images and the CLI tests draw: the frozen
-// 10 cm cube model in 2 pieces (tests/fixtures/model-v1.model) resting on the ground, then
-// flying apart over 24 frames (each piece arcs outward and tumbles), beside a grey sphere and a
-// post (static colliders) while a blue box (a kinematic body) slides in from the left.
+// The small scene the render tests, the golden images, the CLI tests and the render benchmark
+// draw: the frozen 10 cm cube model in 2 pieces (tests/fixtures/model-v1.model) resting on the
+// ground, then flying apart over 24 frames (each piece arcs outward and tumbles), beside a grey
+// sphere and a post (static colliders) while a blue box (a kinematic body) slides in from the
+// left. Header only: it needs render/ and SHATTER_SOURCE_DIR, so only targets that link render
+// include it (the scenes library itself does not).
 #pragma once
 
 #include <cmath>

@@ -156,8 +156,9 @@ TEST(RunInstability, AStableRunRecordsNoClampAndNoStop) {
     EXPECT_EQ(format_run_summary(s).find("stability:"), std::string::npos);  // nothing to say
 }
 
-// Output folders of a shatter from before NAME.instability.json have a simulate stamp that does
-// not list it: simulate runs again rather than leave summary.json without the record.
+// A stage is current only when its stamp holds the key and every output it makes is there: a
+// folder whose simulate stamp does not list NAME.instability.json, and which lacks the file, runs
+// simulate again rather than leave summary.json without the record.
 TEST(RunInstability, AFolderWithoutTheRecordRunsSimulateAgain) {
     TempDir dir;
     ASSERT_EQ(run_wild(dir, {"simulate.on_instability=clamp"}).exit_code, 0);
