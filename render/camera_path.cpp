@@ -170,11 +170,23 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     auto camera = [&](uint32_t f) -> const Camera& { return cameras[cameras.size() > 1 ? f : 0]; };
     std::vector<double> radius(t.pieces);
     for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
-    auto pixel = [&](uint32_t f, uint32_t i) {
-        const Eigen::Vector4d p = (camera(f).projection * camera(f).view).cast<double>() *
-                                  t.pose(f, i).position.cast<double>().homogeneous();
+    // Where a point of piece i (about its centre of mass, model axes) lands in frame f (unit: px).
+    auto pixel = [&](uint32_t f, uint32_t i, const Vec3& local) {
+        const BodyPose& pose = t.pose(f, i);
+        const Vec3 world = pose.rotation.cast<double>().normalized() * local + pose.position.cast<double>();
+        const Eigen::Vector4d p = (camera(f).projection * camera(f).view).cast<double>() * world.homogeneous();
         return Eigen::Vector2d((p.x() / p.w() * 0.5 + 0.5) * s.width, (p.y() / p.w() * 0.5 + 0.5) * s.height);
     };
+    // Each piece's motion is watched at the corners of its box about its centre of mass, so that
+    // a piece that turns in place (a slab rocking) counts as moving.
+    std::vector<std::vector<Vec3>> corners(t.pieces);
+    for (uint32_t i = 0; i < t.pieces && i < scene.model->pieces.size(); ++i) {
+        const Piece& piece = scene.model->pieces[i];
+        Eigen::AlignedBox3d box;
+        for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
+        if (box.isEmpty()) box.extend(Vec3::Zero());
+        for (int k = 0; k < 8; ++k) corners[i].push_back(box.corner(Eigen::AlignedBox3d::CornerType(k)));
+    }
     out.least = 1;
     for (uint32_t f = 0; f < t.frames(); ++f) {
         uint32_t seen = 0;
@@ -188,7 +200,8 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     uint32_t still = 0;
     for (uint32_t f = t.frames(); f-- > 1;) {
         bool moved = false;
-        for (uint32_t i = 0; i < t.pieces && !moved; ++i) moved = (pixel(f, i) - pixel(f - 1, i)).norm() > kStillPixels;
+        for (uint32_t i = 0; i < t.pieces && !moved; ++i)
+            for (const Vec3& q : corners[i]) moved = moved || (pixel(f, i, q) - pixel(f - 1, i, q)).norm() > kStillPixels;
         if (moved) break;
         ++still;
     }

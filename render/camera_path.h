@@ -56,8 +56,9 @@ struct CameraCoverage {
     double first = 0;             // in_view of frame 0
     double least = 0;             // the smallest in_view
     uint32_t least_frame = 0;
-    // The time at the end during which no piece's centre moves on screen by more than
-    // kStillPixels from one frame to the next (camera motion included) (unit: s).
+    // The time at the end during which no corner of any piece's box (about its centre of mass,
+    // turning with it) moves on screen by more than kStillPixels from one frame to the next
+    // (camera motion included) (unit: s).
     double still_at_end = 0;
 };
 inline constexpr double kStillPixels = 0.5;

@@ -177,6 +177,13 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
 
 }  // namespace
 
+double rest_speed(const Model& model) {
+    Eigen::AlignedBox3d box;
+    for (const Piece& p : model.pieces)
+        for (const Vec3& v : p.surface.vertices) box.extend(v);
+    return box.isEmpty() ? kRestSpeed : std::max(kRestSpeed, kRestSpeedPerSize * box.diagonal().norm());
+}
+
 uint32_t frame_count(const SimulateSettings& s) {
     return uint32_t(std::llround((s.auto_duration ? s.max_duration : s.duration) * s.fps)) + 1;
 }
@@ -218,16 +225,17 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
 
     const uint32_t frames = frame_count(in.simulate);
     // duration = "auto": the fastest point of each piece between the last two recorded frames
-    // ((|dx| + angle r) x fps) against kRestSpeed. The recorded motion, not the velocities of the
+    // ((|dx| + angle r) x fps) against the rest speed. The recorded motion, not the velocities of the
     // frame's last step: a piece resting on others jitters at a few cm/s while it stays put.
     std::vector<double> radius(world.pieces(), 0.0);
     for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
+    const double rest = rest_speed(model);
     auto at_rest = [&](uint32_t f) {
         for (uint32_t i = 0; i < world.pieces(); ++i) {
             if (!world.piece_dynamic(i)) continue;
             const BodyPose &a = t.pose(f - 1, i), &b = t.pose(f, i);
             const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
-            if (!(((b.position - a.position).cast<double>().norm() + angle * radius[i]) * in.simulate.fps < kRestSpeed))
+            if (!(((b.position - a.position).cast<double>().norm() + angle * radius[i]) * in.simulate.fps < rest))
                 return false;
         }
         return true;

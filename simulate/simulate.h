@@ -116,12 +116,16 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
 // duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);
 
-// duration = "auto": a piece is at rest when no point of it moved faster than kRestSpeed between
-// the last two recorded frames ((|dx| + angle r) x fps, r its radius about its centre of mass,
-// from the poses the trajectory keeps); the simulation ends once every dynamic
-// piece has been at rest for kRestHold, checked at frame boundaries (deterministic), or at
-// max_duration.
-inline constexpr double kRestSpeed = 0.02;  // (unit: m/s)
-inline constexpr double kRestHold = 0.5;    // (unit: s)
+// duration = "auto": a piece is at rest when no point of it moved faster than the rest speed
+// between the last two recorded frames ((|dx| + angle r) x fps, r its radius about its centre of
+// mass, from the poses the trajectory keeps); the simulation ends once every dynamic piece has
+// been at rest for kRestHold, checked at frame boundaries (deterministic), or at max_duration.
+// The rest speed is kRestSpeed, or kRestSpeedPerSize times the object's size (the diagonal of its
+// bounding box) when that is more: a 5 m object creeping at 5 cm/s moves less than half a pixel
+// a frame in a movie that frames it, and is still to the eye.
+inline constexpr double kRestSpeed = 0.02;          // (unit: m/s)
+inline constexpr double kRestSpeedPerSize = 0.04;   // (unit: 1/s: object sizes per second)
+inline constexpr double kRestHold = 0.5;            // (unit: s)
+double rest_speed(const Model& model);              // (unit: m/s)
 
 }  // namespace shatter

@@ -51,8 +51,9 @@ TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
     // The last frame is kRestHold (15 frames at 30 fps) after the last frame with motion.
     const uint32_t hold = uint32_t(std::lround(kRestHold * t.fps));
     EXPECT_NEAR((t.frames() - 1) / t.fps, r.rest_time + kRestHold, 1e-9);
-    // Over the hold, the recorded poses barely move: at most kRestSpeed at every point of every
-    // piece; the frame before the hold moved more.
+    // Over the hold, the recorded poses barely move: at most the rest speed (kRestSpeed for this
+    // 0.28 m plate) at every point of every piece; the frame before the hold moved more.
+    ASSERT_EQ(rest_speed(m), kRestSpeed);
     for (uint32_t f = t.frames() - hold; f < t.frames(); ++f) EXPECT_LT(frame_speed(m, t, f), kRestSpeed) << f;
     EXPECT_GE(frame_speed(m, t, t.frames() - hold - 1), kRestSpeed);
     // The settings remember "auto" and the cap; the same inputs give the same bytes.
@@ -60,6 +61,14 @@ TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
     EXPECT_EQ(encode_trajectory(simulate(m, dropped_plate(), "test").trajectory), encode_trajectory(t));
     std::printf("[ auto     ] rests at %.3f s, ends at %.3f s (%u frames)\n", r.rest_time, (t.frames() - 1) / t.fps,
                 t.frames());
+}
+
+// A large object rests at a speed in proportion to its size: the 4 x 1 x 4 m plate of 1 m boxes
+// has a diagonal of sqrt(4^2 + 1^2 + 4^2) = sqrt(33) = 5.745 m, so kRestSpeedPerSize x 5.745 m =
+// 0.2298 m/s; a 0.28 m plate keeps kRestSpeed (0.04 x 0.28 = 0.011 m/s is less).
+TEST(AutoDuration, TheRestSpeedGrowsWithTheObject) {
+    EXPECT_NEAR(rest_speed(box_grid(4, 1, 4, 1.0, Vec3::Zero(), 2400, 2)), 0.04 * std::sqrt(33.0), 1e-12);
+    EXPECT_EQ(rest_speed(plate()), kRestSpeed);
 }
 
 TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
