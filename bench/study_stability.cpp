@@ -45,6 +45,14 @@ void row(Csv& csv, const std::string& map, const std::string& method, const char
                         c.guard_refuses, c.breaks, d(c.growth), d(c.wall), d(c.injected), d(c.momentum_work)));
 }
 
+// A method's name, optionally with "+direct" for [simulate] joints = "direct".
+void apply_method_and_joints(const std::string& name, SimulationInput& in) {
+    const std::string suffix = "+direct";
+    const bool direct = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    apply_method(direct ? name.substr(0, name.size() - suffix.size()) : name, in);
+    if (direct) in.simulate.joints = JointSolve::Direct;
+}
+
 }  // namespace
 
 bool section_stability(const Options& opt, Headlines& h) {
@@ -77,8 +85,10 @@ bool section_stability(const Options& opt, Headlines& h) {
     // Map 2: mass ratio x alpha.
     const std::vector<double> ratios = q ? std::vector<double>{0.01, 1, 100} : std::vector<double>{1e-3, 1e-2, 0.1, 1, 10, 100, 1e3};
     const std::vector<double> alphas = q ? std::vector<double>{0, 1, 10} : std::vector<double>{0, 0.5, 1, 2, 5, 10, 100};
-    std::vector<std::string> ms2 = q ? std::vector<std::string>{"energized"}
-                                     : std::vector<std::string>{"energized", "paper", "opposed", "rate_limit", "rollback"};
+    // "+direct": the method with [simulate] joints = "direct" (simulate/bullet_solver.h).
+    std::vector<std::string> ms2 = q ? std::vector<std::string>{"energized", "energized+direct"}
+                                     : std::vector<std::string>{"energized", "energized+direct", "paper", "opposed",
+                                                                "rate_limit", "rollback"};
     spdlog::info("study: stability map mass ratio x alpha");
     std::map<std::pair<std::string, std::pair<double, double>>, Stability> cls;
     for (const std::string& m : ms2)
@@ -88,7 +98,7 @@ bool section_stability(const Options& opt, Headlines& h) {
                 r.mass_ratio = ratio;
                 r.alpha = a;
                 StudyCase c = rig_case(r);
-                apply_method(m, c.input);
+                apply_method_and_joints(m, c.input);
                 c.input.material.alpha = a;
                 const Cell cell = run_cell(c);
                 cls[{m, {ratio, a}}] = cell.cls;

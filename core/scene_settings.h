@@ -125,6 +125,10 @@ enum class KickDirectionMode { Paper, Opposed, Force };
 // impulse in a step reaches strength x area x h (btTypedConstraint::setBreakingImpulseThreshold),
 // for comparison (docs/accuracy.md).
 enum class BreakCriterion { Force, BulletImpulse };
+// How the solver treats the joints (simulate/bullet_solver.h): "iterative": one row at a time, as
+// Bullet's sequential impulses; "direct": all joint rows of a step solved at once (a sparse
+// LDL^T) in every iteration, the contacts iterated around them.
+enum class JointSolve { Iterative, Direct };
 // When the simulation goes unstable (a NaN or Inf, or kinetic energy beyond the energy budget,
 // simulate/instability.h): "stop": end the run there, keep the frames before, mark the trajectory
 // incomplete (exit code 5); "clamp": scale the pieces' velocities down to the budget and go on,
@@ -140,6 +144,7 @@ struct SimulateSettings {
     double fps = 30;            // frames recorded per second (unit: 1/s)
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     uint32_t iterations = 20;   // sequential-impulse iterations per step
+    JointSolve joints = JointSolve::Iterative;  // "iterative" or "direct" (simulate/bullet_solver.h)
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
     // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, never
     // into the partner (momentum-conserving)

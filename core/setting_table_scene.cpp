@@ -210,6 +210,14 @@ SettingsSection simulate_section() {
              whole("iterations", "count", at(&Shot::simulate, &SimulateSettings::iterations), kIterationsLimits,
                    "sequential-impulse iterations per step")
                  .flag("--iterations"),
+             choice<JointSolve>("joints", at(&Shot::simulate, &SimulateSettings::joints),
+                                {{"iterative", JointSolve::Iterative}, {"direct", JointSolve::Direct}},
+                                "\"iterative\": joint rows one at a time (Bullet's sequential impulses); \"direct\": "
+                                "all joint rows solved at once in every iteration (a sparse LDL^T), so their forces "
+                                "match their springs whatever the pieces' mass ratios; the contacts iterated around "
+                                "them (docs/physics.md, \"Direct joints\")")
+                 .flag("--joints")
+                 .json_unless_default(),
              choice<EnergySplitMode>("energy_split", at(&Shot::simulate, &SimulateSettings::energy_split),
                                      {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}},
                                      "\"total\": two bodies at rest gain alpha E together; \"per_body\": each gains "

@@ -1,8 +1,23 @@
 #include "simulate/bullet_solver.h"
 
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
 #include "simulate/compliant_constraint.h"
 
 namespace shatter {
+
+// The joint rows' system of one solve: K = J M^-1 J^T + diag(CFM), factored.
+struct PieceSolver::Direct {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    Eigen::VectorXd residual, correction;
+    bool ok = false;
+};
+
+PieceSolver::PieceSolver() : direct_system_(std::make_unique<Direct>()) {}
+PieceSolver::~PieceSolver() = default;
 
 namespace {
 
@@ -68,7 +83,9 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
                                                                          numManifolds, nullptr, 0, info, debugDrawer);
     btScalar residual = 0;
     const auto add = [&residual](btScalar r) { residual = btMax(residual, r * r); };
-    if (tolerance_ > 0) {
+    if (direct_ && direct_system_->ok) {
+        add(solve_joints_directly());
+    } else if (tolerance_ > 0) {
         btScalar most = 0;
         for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
             const int r = m_orderNonContactConstraintPool[j];
@@ -109,6 +126,88 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
         }
     }
     return residual;
+}
+
+// A joint row's equation, as Bullet's row update reads it (solve_row): the row is satisfied when
+//   rhs - cfm l - (J dv) jacDiagABInv = 0,
+// rhs and cfm being pre-multiplied by jacDiagABInv = 1 / (J M^-1 J^T) of the row alone. Divided by
+// jacDiagABInv, over all joint rows with dv = M^-1 J^T l + (the contacts' part):
+//   (J M^-1 J^T + diag(cfm / jacDiagABInv)) l = rhs / jacDiagABInv - J dv_contacts.
+// K's entry for rows i and j is the sum over the bodies they share of J_i,b . M_b^-1 J_j,b^T: the
+// row's direction for that body (contactNormal, relposCrossNormal) against what an impulse on
+// row j does to it (contactNormal x inverse mass, angularComponent = I^-1 relposCrossNormal).
+void PieceSolver::factor_joints() {
+    const int n = m_tmpSolverNonContactConstraintPool.size();
+    // The rows at each dynamic solver body, with the side (A or B) they act on it from.
+    std::vector<std::vector<std::pair<int, bool>>> at_body(size_t(m_tmpSolverBodyPool.size()));
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
+        at_body[size_t(row.m_solverBodyIdA)].push_back({r, true});
+        at_body[size_t(row.m_solverBodyIdB)].push_back({r, false});
+    }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
+        // The row alone: 1 / jacDiagABInv, as Bullet computed it, plus its CFM.
+        const double diag = row.m_jacDiagABInv != 0 ? (1.0 + double(row.m_cfm)) / double(row.m_jacDiagABInv) : 1.0;
+        entries.emplace_back(r, r, diag);
+    }
+    for (size_t b = 0; b < at_body.size(); ++b) {
+        const btSolverBody& body = m_tmpSolverBodyPool[int(b)];
+        const auto& rows = at_body[b];
+        if (rows.size() < 2 || body.internalGetInvMass().isZero()) continue;
+        for (size_t x = 0; x < rows.size(); ++x) {
+            const btSolverConstraint& ri = m_tmpSolverNonContactConstraintPool[rows[x].first];
+            const btVector3& lin_i = rows[x].second ? ri.m_contactNormal1 : ri.m_contactNormal2;
+            const btVector3& ang_i = rows[x].second ? ri.m_relpos1CrossNormal : ri.m_relpos2CrossNormal;
+            for (size_t y = 0; y < rows.size(); ++y) {
+                if (rows[x].first == rows[y].first) continue;  // the diagonal is the row's own
+                const btSolverConstraint& rj = m_tmpSolverNonContactConstraintPool[rows[y].first];
+                const btVector3& lin_j = rows[y].second ? rj.m_contactNormal1 : rj.m_contactNormal2;
+                const btVector3& dw_j = rows[y].second ? rj.m_angularComponentA : rj.m_angularComponentB;
+                const double k = double(lin_i.dot(lin_j * body.internalGetInvMass()) + ang_i.dot(dw_j));
+                if (k != 0) entries.emplace_back(rows[x].first, rows[y].first, k);
+            }
+        }
+    }
+    Eigen::SparseMatrix<double> K(n, n);
+    K.setFromTriplets(entries.begin(), entries.end());  // duplicates (rows sharing both bodies) are summed
+    Direct& d = *direct_system_;
+    d.ldlt.compute(K);
+    d.ok = d.ldlt.info() == Eigen::Success;
+    d.residual.resize(n);
+}
+
+btScalar PieceSolver::solve_joints_directly() {
+    Direct& d = *direct_system_;
+    const int n = m_tmpSolverNonContactConstraintPool.size();
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+        btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+        btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+        const btScalar jv = c.m_contactNormal1.dot(a.internalGetDeltaLinearVelocity()) +
+                            c.m_relpos1CrossNormal.dot(a.internalGetDeltaAngularVelocity()) +
+                            c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) +
+                            c.m_relpos2CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+        d.residual[r] = c.m_jacDiagABInv != 0
+                            ? double((c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm) / c.m_jacDiagABInv - jv)
+                            : 0.0;
+    }
+    d.correction = d.ldlt.solve(d.residual);
+    btScalar largest = 0, most = 0;
+    for (int r = 0; r < n; ++r) {
+        btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+        const btScalar delta = btScalar(d.correction[r]);
+        c.m_appliedImpulse = btScalar(c.m_appliedImpulse) + delta;
+        m_tmpSolverBodyPool[c.m_solverBodyIdA].internalApplyImpulse(
+            c.m_contactNormal1 * m_tmpSolverBodyPool[c.m_solverBodyIdA].internalGetInvMass(), c.m_angularComponentA, delta);
+        m_tmpSolverBodyPool[c.m_solverBodyIdB].internalApplyImpulse(
+            c.m_contactNormal2 * m_tmpSolverBodyPool[c.m_solverBodyIdB].internalGetInvMass(), c.m_angularComponentB, delta);
+        if (c.m_jacDiagABInv != 0) largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
+        if (tolerance_ > 0 && r < row_scale_.size()) most = btMax(most, btFabs(delta) * row_scale_[r]);
+    }
+    joint_residual_ = most;
+    return largest;
 }
 
 // Bullet's set-up of the joint rows, in the same order and with the same calls (so the same
@@ -163,6 +262,8 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
                                                         const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
     const int own = btMax(m_maxOverrideNumSolverIterations, info.m_numIterations);
     most_iterations_ = btMax(most_iterations_, own);
+    direct_system_->ok = false;
+    if (direct_ && m_tmpSolverNonContactConstraintPool.size() > 0) factor_joints();
     if (!(tolerance_ > 0) || m_tmpSolverNonContactConstraintPool.size() == 0)
         return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
             bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);

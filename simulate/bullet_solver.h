@@ -18,6 +18,8 @@
 // The results are the same bytes as with Bullet's own solver (tested).
 #pragma once
 
+#include <memory>
+
 #include <btBulletDynamicsCommon.h>
 
 namespace shatter {
@@ -27,8 +29,19 @@ namespace shatter {
 // `tolerance` of its strength, or `max_iterations` is reached. A joint row's correction dl at its
 // update is the impulse that would zero its equation; its force mismatch is dl / (h CFM)
 // (docs/physics.md, "Joint convergence"). Only CompliantPointConstraints may be added.
+//
+// Direct joints (direct_joints(true), off by default): each iteration solves all joint rows of the
+// batch at once instead of one row at a time: the linear system (J M^-1 J^T + CFM) dl = r of the
+// rows' residuals r with the contacts' impulses held, factored once per step (a sparse LDL^T).
+// Its solution is the fixed point Gauss-Seidel would reach after infinitely many passes, so a
+// chain of a heavy and a light piece is as stiff as its springs say whatever their mass ratio;
+// the contacts are still iterated around it (block Gauss-Seidel). The spring law, the CFM and
+// the damping keep their meaning (docs/physics.md, "Direct joints").
 class PieceSolver : public btSequentialImpulseConstraintSolver {
 public:
+    PieceSolver();
+    ~PieceSolver() override;
+    void direct_joints(bool on) { direct_ = on; }
     void converge(double tolerance, int max_iterations) {
         tolerance_ = tolerance;
         max_iterations_ = max_iterations;
@@ -53,6 +66,11 @@ protected:
 
 private:
     btScalar solve_row(btSolverConstraint& row, bool upper_limit);
+    void factor_joints();
+    btScalar solve_joints_directly();  // one direct solve of every joint row; the largest correction (residual)
+    struct Direct;
+    std::unique_ptr<Direct> direct_system_;
+    bool direct_ = false;
     void write_back_joints(const btContactSolverInfo& info);
 
     double tolerance_ = 0;

@@ -108,6 +108,7 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     btContactSolverInfo& info = m.world.getSolverInfo();
     info.m_numIterations = int(setup.iterations);
     m.solver.converge(setup.converge_tolerance, int(std::max(setup.max_iterations, setup.iterations)));
+    m.solver.direct_joints(setup.direct_joints);
     info.m_splitImpulse = 1;  // penetration is resolved without adding kinetic energy
     info.m_splitImpulsePenetrationThreshold = 0;
 

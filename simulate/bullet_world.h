@@ -42,6 +42,8 @@ struct WorldSetup {
     // 0: off (exactly `iterations`).
     double converge_tolerance = 0;
     uint32_t max_iterations = 0;
+    // Direct joints (simulate/bullet_solver.h): every iteration solves all joint rows at once.
+    bool direct_joints = false;
 };
 
 class BulletWorld {

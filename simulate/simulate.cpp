@@ -208,6 +208,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
+    setup.direct_joints = in.simulate.joints == JointSolve::Direct;
     BulletWorld world(model, setup);
     check_cfm(world, model, in);
 

@@ -28,12 +28,12 @@ struct ChainLoad {
     int most_iterations = 0;     // the solver's, in one step
 };
 
-ChainLoad load_chain(double tolerance) {
+ChainLoad load_chain(double tolerance, bool direct = false) {
     const Shot shot = load_shot(SHATTER_SOURCE_DIR "/assets/chain.toml");
     const Model model = generate_model(*shot.generate);
     EXPECT_EQ(shot.material.damping, 0.0);
     const double h = 1.0 / (shot.simulate.fps * shot.simulate.substeps);
-    WorldSetup setup{shot.scene, shot.object, shot.material, h, shot.simulate.iterations, false, tolerance, 2000};
+    WorldSetup setup{shot.scene, shot.object, shot.material, h, shot.simulate.iterations, false, tolerance, 2000, direct};
     BulletWorld world(model, setup);
     ChainLoad out;
     std::vector<std::vector<double>> tension;  // per step: k |d| of each joint (unit: N)
@@ -61,9 +61,10 @@ ChainLoad load_chain(double tolerance) {
             break;
         }
     }
-    std::printf("chain, convergence tolerance %g: first overload %.5f s, residual up to %.4f, tension spread %.4f "
+    std::printf("chain, %s joints, convergence tolerance %g: first overload %.5f s, residual up to %.4f, tension spread %.4f "
                 "(of the strength), up to %d iterations a step\n",
-                tolerance, out.first_overload, out.most_residual, out.spread, out.most_iterations);
+                direct ? "direct" : "iterated", tolerance, out.first_overload, out.most_residual, out.spread,
+                out.most_iterations);
     return out;
 }
 
@@ -91,6 +92,17 @@ TEST(JointConvergence, TheResidualShowsAChainSolvedWithTooFewIterations) {
     EXPECT_GT(fixed.spread, 0.5);
     EXPECT_GT(fixed.first_overload, 0.3086 + 0.005);
     EXPECT_EQ(fixed.most_iterations, 20);
+}
+
+TEST(JointConvergence, DirectJointsCarryOneTensionAtTheShotsIterations) {
+    // The joint rows solved at once (simulate/bullet_solver.h) at the shot's 20 iterations: the
+    // converged chain's answer without iterating further.
+    const ChainLoad direct = load_chain(0, true);
+    ASSERT_GT(direct.first_overload, 0);
+    EXPECT_LT(direct.most_residual, kResidualTolerance);
+    EXPECT_LT(direct.spread, kResidualTolerance);
+    EXPECT_NEAR(direct.first_overload, 0.3086, 0.001);
+    EXPECT_EQ(direct.most_iterations, 20);
 }
 
 }  // namespace
