@@ -221,7 +221,10 @@ void read_stiffness(TomlSection& s, Shot& shot) {
         if (layer(e) == layer(n))
             s.fail(n, fmt::format("{} and {} are both given", s.key_name("stiffness"), s.key_name("youngs_modulus")),
                    "give youngs_modulus (Pa: k = E A / l) or stiffness (N/m^3: k = stiffness A), not both");
-        if (layer(e) > layer(n)) return;  // the later youngs_modulus wins
+        if (layer(e) > layer(n)) {  // the later youngs_modulus wins
+            spdlog::info("material: stiffness of {} replaced by youngs_modulus ({})", layer_name(n), layer_name(e));
+            return;
+        }
     }
     if (s.number("stiffness", shot.material.stiffness, kStiffnessLimits)) shot.material.youngs_modulus.reset();
 }

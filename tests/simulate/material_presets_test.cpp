@@ -115,6 +115,11 @@ TEST(MaterialPresets, APresetFromSetReplacesTheFilesNumbersAndASetKeyBesideItOve
     EXPECT_FALSE(k.material.youngs_modulus);
     EXPECT_EQ(k.material.stiffness, 1e11);
     EXPECT_EQ(k.material.strength, 1e6);  // ice's
+    // youngs_modulus from --set over the file's stiffness: the E A / l rule.
+    const Shot e = shot_of(dir, file, {"material.youngs_modulus=2e8"});
+    ASSERT_TRUE(e.material.youngs_modulus);
+    EXPECT_EQ(*e.material.youngs_modulus, 2e8);
+    EXPECT_EQ(e.material.strength, 2e4);
     // No preset: the file's numbers as they are.
     const Shot none = shot_of(dir, file, {"material.preset=none"});
     EXPECT_FALSE(none.material.youngs_modulus);
