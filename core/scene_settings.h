@@ -100,10 +100,18 @@ Vec3 drive_offset(const PieceDriveSettings& d, double t);
 
 // Constraint properties per unit of the area a constraint stands for (prescore's area share):
 // a constraint with area A has stiffness k = stiffness * A, damping c = damping * A and breaks
-// when its force exceeds strength * A. docs/physics.md relates them to Young's modulus and
-// tensile strength (stiffness ~ E / l, l the tet size).
+// when its force exceeds strength * A. With youngs_modulus E set (by the key or a preset), the
+// stiffness is k = E A / l instead, l the distance between the centres of mass of the two pieces
+// it joins (core/material_presets.h has the rule, docs/physics.md section 2 derives it).
+//
+// A preset (core/material_presets.h) is applied when the shot is read: it sets youngs_modulus,
+// strength, density and the surface; the same table's other keys then override it, and so does a
+// later layer (`--set` over the shot file; a flag). A key of the file under a preset given by
+// `--set` is replaced by the preset (core/setting_table_scene.cpp).
 struct MaterialSettings {
+    std::string preset = "none";    // the preset the numbers came from ("none": no preset)
     std::optional<double> density;  // (unit: kg/m^3) default: the model's density
+    std::optional<double> youngs_modulus;  // (unit: Pa) set: k = E A / l, and stiffness is unused
     double stiffness = 1e10;        // (unit: N/m per m^2 = N/m^3)
     double damping = 0;             // (unit: N s/m per m^2)
     double strength = 1e6;          // tensile strength (unit: Pa = N/m^2)
@@ -112,6 +120,7 @@ struct MaterialSettings {
     bool stiffen = false;           // raise a stiffness too soft for the step to the least that converges (false: refuse)
 };
 inline constexpr Limits kStiffnessLimits{1e-3, 1e18, "N/m^3"};
+inline constexpr Limits kYoungsModulusLimits{1, 1e13, "Pa"};
 inline constexpr Limits kDampingLimits{0, 1e15, "N s/m^3"};
 inline constexpr Limits kStrengthLimits{0, 1e12, "Pa"};
 inline constexpr Limits kAlphaLimits{0, 100, "(fraction of stored energy)"};

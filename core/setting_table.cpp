@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/material_presets.h"
 #include "core/setting_builders.h"
 
 namespace shatter {
@@ -87,6 +88,7 @@ std::string settings_markdown(const std::string& name) {
     if (name == "scene.colliders") return markdown(collider_settings());
     if (name == "scene.kinematic") return markdown(kinematic_settings());
     if (name == "object.driven") return markdown(driven_settings());
+    if (name == "material.presets") return material_presets_markdown();
     const SettingsSection* section = find_settings_section(name);
     if (!section) throw std::runtime_error("no settings section '" + name + "'");
     return markdown(section->settings);

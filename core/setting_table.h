@@ -125,7 +125,8 @@ void apply_flag(const SettingsSection& section, const Setting& setting, const Fl
 Shot shot_from_overrides(const std::vector<std::string>& overrides);
 
 // The Markdown table (| key | unit | default | range | flag | meaning |) of a section ("simulate")
-// or an array of tables ("scene.colliders"). Throws std::runtime_error on an unknown name.
+// or an array of tables ("scene.colliders"), or the table of material presets
+// ("material.presets", core/material_presets.h). Throws std::runtime_error on an unknown name.
 std::string settings_markdown(const std::string& name);
 // `doc` with the text between each "<!-- settings:NAME -->" and "<!-- /settings:NAME -->"
 // replaced by settings_markdown(NAME).

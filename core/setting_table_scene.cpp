@@ -1,7 +1,9 @@
 // The [scene], [object], [material] and [simulate] tables (core/setting_table.h): what simulate
 // reads. The arrays of tables of [scene] and [object] are read by core/shot_scene.cpp.
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
+#include "core/material_presets.h"
 #include "core/setting_builders.h"
 
 namespace shatter::table {
@@ -161,27 +163,131 @@ SettingsSection object_section() {
             [](const Shot& shot, ojson& j) { put_object_driven(shot.object, j); }};
 }
 
+namespace {
+
+// Which layer of the shot a value came from: 1 for `--set` (an override's node has the override
+// as its source, core/shot.cpp), 0 for the shot file or the default shot. A later layer wins.
+int layer(const toml::node* n) {
+    const auto& path = n->source().path;
+    return path && path->rfind("--set ", 0) == 0 ? 1 : 0;
+}
+
+std::string layer_name(const toml::node* n) { return layer(n) ? *n->source().path : "the shot"; }
+
+// [material] preset = "NAME": the preset's numbers, set before the table's other keys.
+void read_preset(TomlSection& s, Shot& shot) {
+    std::string name;
+    if (!s.text("preset", name)) return;
+    if (name == "none") {
+        shot.material.preset = name;
+        return;
+    }
+    const MaterialPreset* p = find_material_preset(name);
+    if (!p)
+        s.fail(s.node("preset"), fmt::format("{} = \"{}\" is not a material preset", s.key_name("preset"), name),
+               fmt::format("use one of {} (docs/shot.md, \"Material presets\")", material_preset_names()));
+    apply_material_preset(*p, shot.material);
+}
+
+// The preset given in a later layer than `n` (`--set material.preset=...` over the shot file's
+// key), or null: the key is then the preset's to set.
+const toml::node* later_preset(TomlSection& s, const toml::node* n) {
+    const toml::node* p = s.node("preset");
+    if (!p || !p->is_string() || p->as_string()->get() == "none" || layer(p) <= layer(n)) return nullptr;
+    return p;
+}
+
+// A key a preset also sets: it overrides a preset given in the same layer (or an earlier one), and
+// a preset given in a later layer replaces it.
+Setting preset_overridable(Setting setting) {
+    setting.read = [inner = setting.read, key = setting.key](TomlSection& s, Shot& shot) {
+        const toml::node* n = s.node(key.c_str());
+        if (!n) return;
+        if (const toml::node* p = later_preset(s, n)) {
+            spdlog::info("material: {} of {} replaced by the preset ({})", key, layer_name(n), *p->source().path);
+            return;
+        }
+        inner(s, shot);
+    };
+    return setting;
+}
+
+// stiffness: today's rule k = stiffness A; it turns the E A / l rule off (a preset's, or an
+// earlier layer's youngs_modulus). Both keys in one layer are refused.
+void read_stiffness(TomlSection& s, Shot& shot) {
+    const toml::node* n = s.node("stiffness");
+    if (!n) return;
+    if (const toml::node* e = s.node("youngs_modulus")) {
+        if (layer(e) == layer(n))
+            s.fail(n, fmt::format("{} and {} are both given", s.key_name("stiffness"), s.key_name("youngs_modulus")),
+                   "give youngs_modulus (Pa: k = E A / l) or stiffness (N/m^3: k = stiffness A), not both");
+        if (layer(e) > layer(n)) {  // the later youngs_modulus wins
+            spdlog::info("material: stiffness of {} replaced by youngs_modulus ({})", layer_name(n), layer_name(e));
+            return;
+        }
+    }
+    if (s.number("stiffness", shot.material.stiffness, kStiffnessLimits)) shot.material.youngs_modulus.reset();
+}
+
+}  // namespace
+
 SettingsSection material_section() {
+    Setting preset = custom("preset", "", "\"none\"", "", "", read_preset)
+                         .json([](const Shot& s, ojson& j) {
+                             if (s.material.preset != "none") j["preset"] = s.material.preset;
+                         });
+    preset.range = "none";
+    for (const MaterialPreset& p : material_presets()) preset.range += std::string(", ") + p.name;
+    preset.help =
+        "a material's published numbers (" + preset.range.substr(6) +
+        "; docs/shot.md, \"Material presets\"): sets youngs_modulus, strength, density, friction and restitution; any "
+        "of them given beside it overrides the preset's, and a preset given with `--set` replaces the shot file's. "
+        "\"none\": no preset (k = stiffness x A)";
+    preset.flag("--preset");
+    Setting youngs_modulus =
+        custom("youngs_modulus", "Pa", "(unset: k = stiffness x A)", "", "", [](TomlSection& s, Shot& shot) {
+            double e = 0;
+            if (s.number("youngs_modulus", e, kYoungsModulusLimits)) shot.material.youngs_modulus = e;
+        }).json([](const Shot& s, ojson& j) {
+            if (s.material.youngs_modulus) j["youngs_modulus"] = *s.material.youngs_modulus;
+        });
+    youngs_modulus.range = range_of(kYoungsModulusLimits);
+    youngs_modulus.help =
+        "Young's modulus E: each constraint's stiffness is E A / l, A its area and l the distance between the centres "
+        "of mass of the two pieces it joins (docs/physics.md section 2); not with stiffness";
+    youngs_modulus.flag("--youngs-modulus");
+    Setting stiffness = number("stiffness", "N/m^3", at(&Shot::material, &MaterialSettings::stiffness),
+                               kStiffnessLimits,
+                               "constraint stiffness per m^2 of area: k = stiffness x A (~ Young's modulus / l); "
+                               "unused when youngs_modulus is set (by the key or a preset)")
+                            .flag("--stiffness");
+    stiffness.read = read_stiffness;
+    stiffness.write = [w = stiffness.write](const Shot& s, ojson& j) {
+        if (!s.material.youngs_modulus) w(s, j);  // the trajectory records the rule used
+    };
     return {"material",
-            {optional_number("density", "kg/m^3", at(&Shot::material, &MaterialSettings::density), kDensityLimits,
-                             "density of the pieces (overrides the one prescore used)", "the model's", Unset::Null),
-             number("stiffness", "N/m^3", at(&Shot::material, &MaterialSettings::stiffness), kStiffnessLimits,
-                    "constraint stiffness per m^2 of area (~ Young's modulus / tet size)")
-                 .flag("--stiffness"),
+            {preset,
+             preset_overridable(optional_number("density", "kg/m^3", at(&Shot::material, &MaterialSettings::density),
+                                                kDensityLimits, "density of the pieces (overrides the one prescore used)",
+                                                "the model's", Unset::Null)),
+             preset_overridable(youngs_modulus),
+             preset_overridable(stiffness),
              number("damping", "N s/m^3", at(&Shot::material, &MaterialSettings::damping), kDampingLimits,
                     "constraint damping per m^2 of area")
                  .flag("--damping"),
-             number("strength", "Pa", at(&Shot::material, &MaterialSettings::strength), kStrengthLimits,
-                    "tensile strength: breaking force per m^2 of area")
-                 .flag("--strength"),
+             preset_overridable(number("strength", "Pa", at(&Shot::material, &MaterialSettings::strength),
+                                       kStrengthLimits, "tensile strength: breaking force per m^2 of area")
+                                    .flag("--strength")),
              number("alpha", "1", at(&Shot::material, &MaterialSettings::alpha), kAlphaLimits,
                     "fraction of a broken constraint's stored energy given back as kinetic energy (0: plain breaking; "
                     "> 1 for artistic effect)")
                  .flag("--alpha"),
-             number("friction", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::friction),
-                    kFrictionLimits, "Coulomb friction coefficient of the pieces"),
-             number("restitution", "1", at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::restitution),
-                    kRestitutionLimits, "bounciness of the pieces"),
+             preset_overridable(number("friction", "1",
+                                       at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::friction),
+                                       kFrictionLimits, "Coulomb friction coefficient of the pieces")),
+             preset_overridable(number("restitution", "1",
+                                       at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::restitution),
+                                       kRestitutionLimits, "bounciness of the pieces")),
              boolean("stiffen", at(&Shot::material, &MaterialSettings::stiffen),
                      "raise a stiffness too soft for the step (CFM above max_cfm) to the least that converges, times "
                      "1.05, and log it, instead of refusing the shot; the default shot of `shatter run MESH` turns it on")

@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "core/material_presets.h"
 #include "meshio/mesh_load.h"
 #include "simulate/bullet_collision.h"
 #include "simulate/bullet_convert.h"
@@ -325,14 +326,17 @@ void BulletWorld::build_joints(const Model& model) {
         Impl::Joint& j = m.joints[i];
         j.piece_a = c.piece_a;
         j.piece_b = c.piece_b;
-        j.strength = setup_.material.strength * c.area;
+        // k, damping and strength from the material and the constraint's area (and, with Young's
+        // modulus, its length between the piece centres): core/material_presets.h.
+        const ConstraintMaterial cm = constraint_material(setup_.material, model, c);
+        j.strength = cm.strength;
         const Impl::PieceBody& a = m.pieces[c.piece_a];
         const Impl::PieceBody& b = m.pieces[c.piece_b];
         if ((!a.dynamic && !b.dynamic) || !(c.area > 0)) continue;  // nothing to solve
         const btVector3 pivot = to_bullet(r_obj * c.pivot + t_obj);
         j.constraint = std::make_unique<CompliantPointConstraint>(
             *a.body, *b.body, a.body->getWorldTransform().inverse() * pivot, b.body->getWorldTransform().inverse() * pivot,
-            setup_.material.stiffness * c.area, setup_.material.damping * c.area, setup_.h);
+            cm.stiffness, cm.damping, setup_.h);
         j.constraint->set_strength(j.strength);
         if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * setup_.h));
         m.world.addConstraint(j.constraint.get(), true);

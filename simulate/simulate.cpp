@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "core/material_presets.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
 #include "simulate/break_policy.h"
@@ -33,7 +34,8 @@ EnergizeSettings energize_settings(const SimulationInput& in) {
     return e;
 }
 
-// The least [material] stiffness with which every constraint's CFM stays within max_cfm at this
+// The least [material] stiffness number (stiffness in N/m^3, or youngs_modulus in Pa when it is
+// set: core/material_presets.h) with which every constraint's CFM stays within max_cfm at this
 // step (0 when the shot's already does), and the first constraint that needs more.
 double least_stiffness(const BulletWorld& world, const Model& model, const SimulationInput& in, size_t* first) {
     double need = 0;
@@ -42,8 +44,10 @@ double least_stiffness(const BulletWorld& world, const Model& model, const Simul
         double w = 0;
         const double cfm = world.current_max_cfm(c, &w);
         if (cfm <= in.simulate.max_cfm) continue;
-        const double area = model.constraints[c].area;
-        const double k_min = min_stiffness_for_cfm(in.material.damping * area, world.h(), w, in.simulate.max_cfm) / area;
+        const Constraint& constraint = model.constraints[c];
+        const double k_min = min_stiffness_for_cfm(in.material.damping * constraint.area, world.h(), w,
+                                                   in.simulate.max_cfm) /
+                             stiffness_factor(in.material, model, constraint);
         if (need == 0) *first = c;
         need = std::max(need, k_min);
     }
@@ -57,15 +61,20 @@ void check_cfm(const BulletWorld& world, const Model& model, const SimulationInp
     const double k_min = least_stiffness(world, model, in, &c);
     if (k_min == 0) return;
     double w = 0;
+    const bool e = bool(in.material.youngs_modulus);
+    const char* key = e ? "youngs_modulus" : "stiffness";
+    const char* unit = e ? "Pa" : "N/m^3";
     throw_input_error(
-        "[material] stiffness",
-        fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with stiffness "
-                    "{:.4g} N/m^3; the solver converges only below CFM {:g} (max_cfm)",
-                    c, world.piece_a(c), world.piece_b(c), world.current_max_cfm(c, &w), world.h(),
-                    in.material.stiffness, in.simulate.max_cfm),
-        fmt::format("raise [material] stiffness to at least {:.3g} N/m^3 (or damping), set [material] stiffen = true, "
+        fmt::format("[material] {}", key),
+        fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with {} "
+                    "{:.4g} {}{}; the solver converges only below CFM {:g} (max_cfm)",
+                    c, world.piece_a(c), world.piece_b(c), world.current_max_cfm(c, &w), world.h(), key,
+                    stiffness_number(in.material), unit,
+                    in.material.preset != "none" ? fmt::format(" (preset \"{}\")", in.material.preset) : "",
+                    in.simulate.max_cfm),
+        fmt::format("raise [material] {} to at least {:.3g} {} (or damping), set [material] stiffen = true, "
                     "or use fewer [simulate] substeps: a longer step lowers CFM",
-                    k_min));
+                    key, k_min, unit));
 }
 
 class Run {
@@ -202,9 +211,14 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                                             model, in, &first);
         if (need > 0) {
             const double stiffness = 1.05 * need;
-            spdlog::info("auto: stiffness {:.4g} -> {:.4g} N/m^3 (constraint {} would need CFM above {:g} at h = {:.4g} s; "
-                         "[material] stiffen = true)", in.material.stiffness, stiffness, first, in.simulate.max_cfm, h);
-            in.material.stiffness = stiffness;
+            const bool e = bool(in.material.youngs_modulus);
+            spdlog::info("auto: {} {:.4g} -> {:.4g} {} (constraint {} would need CFM above {:g} at h = {:.4g} s; "
+                         "[material] stiffen = true)", e ? "youngs_modulus" : "stiffness", stiffness_number(in.material),
+                         stiffness, e ? "Pa" : "N/m^3", first, in.simulate.max_cfm, h);
+            if (e)
+                in.material.youngs_modulus = stiffness;
+            else
+                in.material.stiffness = stiffness;
         }
     }
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
