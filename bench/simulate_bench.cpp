@@ -3,7 +3,8 @@
 // the machine is shared), on the bunny and on plates of
 // 100 to 10,000 box pieces dropped flat on the ground. Prints CSV; never fails on time.
 // Arguments (optional): a scene name to run only that scene (bunny, plate10, plate32, plate100),
-// then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01").
+// then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
+// then the joint solve ("iterative", as shipped, or "direct"; [simulate] joints).
 // Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
 // constraints runs at >= 60 steps per second.
 #include <chrono>
@@ -21,14 +22,19 @@ using namespace shatter;
 
 namespace {
 
+uint32_t g_iterations = 20;                    // the shipped default ([simulate] iterations)
+JointSolve g_joints = JointSolve::Iterative;  // the shipped default ([simulate] joints)
+
 void run(const char* name, const Model& model, SimulationInput in, double alpha) {
     in.material.alpha = alpha;
+    in.simulate.joints = g_joints;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     const SimulationResult r = simulate(model, in, "bench");
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-    std::printf("%s,%zu,%zu,%u,%g,%llu,%zu,%.4f,%.1f,%.1f,%.6f,%.3f\n", name, model.pieces.size(),
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%.4f,%.1f,%.1f,%.6f,%.3f\n", name,
+                in.simulate.joints == JointSolve::Direct ? "+direct" : "", model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), s, double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
                 100.0 * r.energize_seconds / s);
@@ -36,7 +42,6 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
 }
 
 // The paper's plate scene at scale: the plate falls flat onto a sphere and breaks over it.
-uint32_t g_iterations = 20;  // the shipped default ([simulate] iterations)
 
 SimulationInput plate_drop(double duration, uint32_t n) {
     SimulationInput in;
@@ -62,6 +67,7 @@ int main(int argc, char** argv) {
     const std::string only = argc > 1 ? argv[1] : "";
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
+    if (argc > 4) g_joints = std::string(argv[4]) == "direct" ? JointSolve::Direct : JointSolve::Iterative;
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
                 "energize_percent\n");

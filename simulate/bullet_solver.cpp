@@ -9,10 +9,16 @@
 
 namespace shatter {
 
-// The joint rows' system of one solve: K = J M^-1 J^T + diag(CFM), factored.
+// The joint rows' system of one solve, K = J M^-1 J^T + C (C: the rows' CFM, diagonal, > 0),
+// solved in the bodies' space by the Woodbury identity
+//   K^-1 r = C^-1 (r - J G^-1 J^T C^-1 r),   G = M + J^T C^-1 J,
+// G being the bodies' mass plus the joints' stiffness, 6 unknowns per body (the size of the
+// pieces, not of the rows: a pair of pieces shares dozens of rows).
 struct PieceSolver::Direct {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-    Eigen::VectorXd residual, correction;
+    Eigen::VectorXd residual, correction, body_rhs;
+    std::vector<double> inv_cfm;      // 1 / C per row
+    std::vector<int> body_index;      // per solver body, its first unknown in G, or -1 (not moving)
     bool ok = false;
 };
 
@@ -132,50 +138,73 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
 //   rhs - cfm l - (J dv) jacDiagABInv = 0,
 // rhs and cfm being pre-multiplied by jacDiagABInv = 1 / (J M^-1 J^T) of the row alone. Divided by
 // jacDiagABInv, over all joint rows with dv = M^-1 J^T l + (the contacts' part):
-//   (J M^-1 J^T + diag(cfm / jacDiagABInv)) l = rhs / jacDiagABInv - J dv_contacts.
-// K's entry for rows i and j is the sum over the bodies they share of J_i,b . M_b^-1 J_j,b^T: the
-// row's direction for that body (contactNormal, relposCrossNormal) against what an impulse on
-// row j does to it (contactNormal x inverse mass, angularComponent = I^-1 relposCrossNormal).
+//   (J M^-1 J^T + C) l = rhs / jacDiagABInv - J dv_contacts,   C = diag(cfm / jacDiagABInv).
+// Every compliant joint has C > 0, so it is solved in the bodies' space (Direct).
 void PieceSolver::factor_joints() {
     const int n = m_tmpSolverNonContactConstraintPool.size();
-    // The rows at each dynamic solver body, with the side (A or B) they act on it from.
-    std::vector<std::vector<std::pair<int, bool>>> at_body(size_t(m_tmpSolverBodyPool.size()));
+    Direct& d = *direct_system_;
+    d.residual.resize(n);
+    d.inv_cfm.assign(size_t(n), 0.0);
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
-        at_body[size_t(row.m_solverBodyIdA)].push_back({r, true});
-        at_body[size_t(row.m_solverBodyIdB)].push_back({r, false});
+        const double cfm = row.m_jacDiagABInv != 0 ? double(row.m_cfm) / double(row.m_jacDiagABInv) : 0.0;
+        if (!(cfm > 0)) return;  // a rigid row: left to the iterations (d.ok stays false)
+        d.inv_cfm[size_t(r)] = 1.0 / cfm;
+    }
+    factor_body_space();
+}
+
+// G = M + J^T C^-1 J over the dynamic bodies the joints touch (6 unknowns each: linear, then
+// angular velocity change).
+void PieceSolver::factor_body_space() {
+    const int n = m_tmpSolverNonContactConstraintPool.size();
+    Direct& d = *direct_system_;
+    d.body_index.assign(size_t(m_tmpSolverBodyPool.size()), -1);
+    int unknowns = 0;
+    auto moving = [&](int id) {
+        const btSolverBody& body = m_tmpSolverBodyPool[id];
+        return body.m_originalBody && !body.internalGetInvMass().isZero();
+    };
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
+        for (int id : {row.m_solverBodyIdA, row.m_solverBodyIdB})
+            if (d.body_index[size_t(id)] < 0 && moving(id)) d.body_index[size_t(id)] = unknowns, unknowns += 6;
     }
     std::vector<Eigen::Triplet<double>> entries;
+    for (int id = 0; id < m_tmpSolverBodyPool.size(); ++id) {
+        const int k = d.body_index[size_t(id)];
+        if (k < 0) continue;
+        const btSolverBody& body = m_tmpSolverBodyPool[id];
+        for (int i = 0; i < 3; ++i) entries.emplace_back(k + i, k + i, 1.0 / double(body.internalGetInvMass()[i]));
+        const btMatrix3x3 inertia = body.m_originalBody->getInvInertiaTensorWorld().inverse();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) entries.emplace_back(k + 3 + i, k + 3 + j, double(inertia[i][j]));
+    }
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
-        // The row alone: 1 / jacDiagABInv, as Bullet computed it, plus its CFM.
-        const double diag = row.m_jacDiagABInv != 0 ? (1.0 + double(row.m_cfm)) / double(row.m_jacDiagABInv) : 1.0;
-        entries.emplace_back(r, r, diag);
-    }
-    for (size_t b = 0; b < at_body.size(); ++b) {
-        const btSolverBody& body = m_tmpSolverBodyPool[int(b)];
-        const auto& rows = at_body[b];
-        if (rows.size() < 2 || body.internalGetInvMass().isZero()) continue;
-        for (size_t x = 0; x < rows.size(); ++x) {
-            const btSolverConstraint& ri = m_tmpSolverNonContactConstraintPool[rows[x].first];
-            const btVector3& lin_i = rows[x].second ? ri.m_contactNormal1 : ri.m_contactNormal2;
-            const btVector3& ang_i = rows[x].second ? ri.m_relpos1CrossNormal : ri.m_relpos2CrossNormal;
-            for (size_t y = 0; y < rows.size(); ++y) {
-                if (rows[x].first == rows[y].first) continue;  // the diagonal is the row's own
-                const btSolverConstraint& rj = m_tmpSolverNonContactConstraintPool[rows[y].first];
-                const btVector3& lin_j = rows[y].second ? rj.m_contactNormal1 : rj.m_contactNormal2;
-                const btVector3& dw_j = rows[y].second ? rj.m_angularComponentA : rj.m_angularComponentB;
-                const double k = double(lin_i.dot(lin_j * body.internalGetInvMass()) + ang_i.dot(dw_j));
-                if (k != 0) entries.emplace_back(rows[x].first, rows[y].first, k);
-            }
+        const double w = d.inv_cfm[size_t(r)];
+        // The row's Jacobian: (contactNormal1, relpos1CrossNormal) on A, (contactNormal2,
+        // relpos2CrossNormal) on B.
+        const int at[2] = {d.body_index[size_t(row.m_solverBodyIdA)], d.body_index[size_t(row.m_solverBodyIdB)]};
+        double jac[2][6];
+        for (int i = 0; i < 3; ++i) {
+            jac[0][i] = row.m_contactNormal1[i], jac[0][3 + i] = row.m_relpos1CrossNormal[i];
+            jac[1][i] = row.m_contactNormal2[i], jac[1][3 + i] = row.m_relpos2CrossNormal[i];
         }
+        for (int x = 0; x < 2; ++x)
+            for (int y = 0; y < 2; ++y) {
+                if (at[x] < 0 || at[y] < 0) continue;
+                for (int i = 0; i < 6; ++i)
+                    for (int j = 0; j < 6; ++j)
+                        if (jac[x][i] != 0 && jac[y][j] != 0)
+                            entries.emplace_back(at[x] + i, at[y] + j, w * jac[x][i] * jac[y][j]);
+            }
     }
-    Eigen::SparseMatrix<double> K(n, n);
-    K.setFromTriplets(entries.begin(), entries.end());  // duplicates (rows sharing both bodies) are summed
-    Direct& d = *direct_system_;
-    d.ldlt.compute(K);
+    Eigen::SparseMatrix<double> G(unknowns, unknowns);
+    G.setFromTriplets(entries.begin(), entries.end());
+    d.ldlt.compute(G);
     d.ok = d.ldlt.info() == Eigen::Success;
-    d.residual.resize(n);
+    d.body_rhs.resize(unknowns);
 }
 
 btScalar PieceSolver::solve_joints_directly() {
@@ -193,7 +222,31 @@ btScalar PieceSolver::solve_joints_directly() {
                             ? double((c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm) / c.m_jacDiagABInv - jv)
                             : 0.0;
     }
-    d.correction = d.ldlt.solve(d.residual);
+    {
+        // K^-1 r = C^-1 (r - J G^-1 J^T C^-1 r)
+        d.body_rhs.setZero();
+        for (int r = 0; r < n; ++r) {
+            const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+            const double wr = d.inv_cfm[size_t(r)] * d.residual[r];
+            if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
+                for (int i = 0; i < 3; ++i)
+                    d.body_rhs[k + i] += wr * c.m_contactNormal1[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos1CrossNormal[i];
+            if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
+                for (int i = 0; i < 3; ++i)
+                    d.body_rhs[k + i] += wr * c.m_contactNormal2[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos2CrossNormal[i];
+        }
+        const Eigen::VectorXd z = d.ldlt.solve(d.body_rhs);
+        d.correction.resize(n);
+        for (int r = 0; r < n; ++r) {
+            const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+            double jz = 0;
+            if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
+                for (int i = 0; i < 3; ++i) jz += c.m_contactNormal1[i] * z[k + i] + c.m_relpos1CrossNormal[i] * z[k + 3 + i];
+            if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
+                for (int i = 0; i < 3; ++i) jz += c.m_contactNormal2[i] * z[k + i] + c.m_relpos2CrossNormal[i] * z[k + 3 + i];
+            d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
+        }
+    }
     btScalar largest = 0, most = 0;
     for (int r = 0; r < n; ++r) {
         btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];

@@ -67,6 +67,7 @@ protected:
 private:
     btScalar solve_row(btSolverConstraint& row, bool upper_limit);
     void factor_joints();
+    void factor_body_space();
     btScalar solve_joints_directly();  // one direct solve of every joint row; the largest correction (residual)
     struct Direct;
     std::unique_ptr<Direct> direct_system_;

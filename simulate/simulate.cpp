@@ -201,7 +201,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     const double h = 1.0 / (shot_input.simulate.fps * shot_input.simulate.substeps);
     const bool bullet_impulse = shot_input.simulate.break_criterion == BreakCriterion::BulletImpulse;
     SimulationInput in = shot_input;
-    if (in.material.stiffen) {
+    // Direct joints solve every joint row exactly whatever its CFM: no stiffness is too soft for
+    // the step (docs/physics.md section 5b), so neither stiffen nor the CFM check applies.
+    const bool direct = in.simulate.joints == JointSolve::Direct;
+    if (in.material.stiffen && !direct) {
         // A stiffness too soft for the step (pieces smaller or heavier than the shot was tuned
         // for) is raised to the least that converges, with a margin, instead of refused; the
         // trajectory's settings then hold the stiffness used.
@@ -222,9 +225,9 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
-    setup.direct_joints = in.simulate.joints == JointSolve::Direct;
+    setup.direct_joints = direct;
     BulletWorld world(model, setup);
-    check_cfm(world, model, in);
+    if (!direct) check_cfm(world, model, in);
 
     SimulationResult out;
     Trajectory& t = out.trajectory;
