@@ -27,13 +27,12 @@
 
 namespace shatter {
 
-struct RenderSurface {
-    std::vector<Vec3> vertices;  // (unit: m, model frame)
-    std::vector<Vec3> normals;   // unit, one per vertex
-    std::vector<Tri> triangles;  // outward oriented
-    std::vector<FaceKind> kinds; // one per triangle
-    bool fell_back = false;      // the tet surface, flat shaded
-};
+// What prescore uses (docs/render.md, "Render surfaces"): the margin in tet sizes (diagonal /
+// resolution), and the budget of the cut. Each piece's cut corefines the whole surface, so the
+// work grows as pieces x surface triangles (measured ~2 us per triangle and piece on the demo:
+// 10 x 69,666 in 1.4 s); beyond the budget (about 8 s) the pieces keep their tet surfaces.
+inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
+inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
 
 struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
