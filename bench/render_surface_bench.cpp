@@ -1,5 +1,6 @@
-// Render surfaces on a real mesh: prescore time, the cut's time, fallbacks, and how closely the
-// pieces' render surfaces follow the input (prescore/surface_agreement.h). Prints one CSV row.
+// Render surfaces on a real mesh: prescore time (without them), the cut's time, fallbacks, and
+// how closely the pieces' render surfaces follow the surface the tets were made from (the input,
+// or its wrap when prescore wrapped it; prescore/surface_agreement.h). Prints one CSV row.
 //   render_surface_bench MESH [scale 0: automatic] [pieces 10] [resolution 20] [hollow 0: solid]
 //                        [margin, in tet sizes 0.15]
 #include <chrono>
@@ -10,10 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
-#include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
 #include "prescore/prescore.h"
-#include "prescore/repair.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"
 
@@ -36,17 +34,15 @@ int main(int argc, char** argv) {
     if (std::getenv("SHATTER_DEBUG")) spdlog::set_level(spdlog::level::debug);
     try {
         using Clock = std::chrono::steady_clock;
+        // prescore without its render surfaces (timed), then the cut as prescore makes it, from
+        // the surface the tets were made from (the input, its wrap or its thickened wrap).
+        settings.render_surface = false;
         auto t0 = Clock::now();
         PrescoreReport report;
         const Model model = prescore(mesh, settings, &report);
         auto t1 = Clock::now();
-        TriangleMesh input = load_mesh_file(mesh.path).mesh;
-        for (Vec3& v : input.vertices) v *= report.scale;
-        if (check_mesh(input, false).volume < 0) orient_outward(input);
+        const TriangleMesh& input = report.surface;
         const double diagonal = report.input.diagonal;
-        // A wrapped input: cut the wrap, as prescore's first repair made it (a thickening wrap
-        // at another offset is not reproduced here).
-        if (report.repaired) input = alpha_wrap(input, mesh.wrap_alpha * diagonal, mesh.wrap_offset * diagonal);
         RenderSurfaceSettings rs;
         rs.margin = margin_tets * diagonal / report.resolution;
         auto t2 = Clock::now();
