@@ -1,10 +1,10 @@
 // Render surfaces against tet surfaces, side by side in one run: the demo bunny (assets/bunny.toml,
-// prescored here) drawn over the render benchmark's synthetic 60-frame trajectory at 1280x720
-// (shadows, 4x MSAA, PNG writing overlapped), once with each piece's tet surface and once with
-// its render surface (prescore/render_surface.h) put in its place. The renderer still shades
-// flat (a face normal per triangle): this measures the cost of the render surfaces' triangles,
-// not yet of smooth normals. Prints CSV; with an output folder as argument, keeps frame 0 of
-// each as tet.png and render.png there. Never fails on time.
+// prescored here: its pieces carry render surfaces) drawn over the render benchmark's synthetic
+// 60-frame trajectory at 1280x720 (shadows, 4x MSAA, PNG writing overlapped), once as before
+// (the render surfaces removed: each piece's tet surface, flat, unindexed) and once as render
+// draws them now (indexed, smooth per-vertex normals on the outer faces). Prints CSV; with an
+// output folder as argument, keeps frame 0 of each as tet.png and render.png there. Never fails
+// on time.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,10 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/shot.h"
-#include "prescore/mesh_check.h"
-#include "prescore/mesh_load.h"
 #include "prescore/prescore.h"
-#include "prescore/render_surface.h"
 #include "render/render.h"
 #include "tests/render/render_test_scene.h"
 
@@ -25,20 +22,9 @@ using namespace shatter;
 int main(int argc, char** argv) {
     spdlog::set_level(spdlog::level::warn);
     const Shot shot = load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/bunny.toml");
-    PrescoreReport report;
-    const Model tet_model = prescore(shot.mesh, shot.prescore, &report);
-    TriangleMesh input = load_mesh(shot.mesh.path, report.scale);
-    if (check_mesh(input, false).volume < 0) orient_outward(input);
-    RenderSurfaceSettings rs;
-    rs.margin = 0.15 * report.input.diagonal / report.resolution;
-    Model render_model = tet_model;
-    const std::vector<RenderSurface> surfaces = render_surfaces(input, tet_model, rs);
-    for (size_t p = 0; p < surfaces.size(); ++p) {
-        PieceSurface& s = render_model.pieces[p].surface;
-        s.vertices = surfaces[p].vertices;
-        s.triangles = surfaces[p].triangles;
-        s.kinds = surfaces[p].kinds;
-    }
+    const Model render_model = prescore(shot.mesh, shot.prescore, nullptr);
+    Model tet_model = render_model;
+    for (Piece& p : tet_model.pieces) p.render.reset();
     SceneSettings scene_settings;  // the ground only
     const Trajectory trajectory = testing_support::test_trajectory(tet_model, scene_settings, 60);
     const std::string out = "/tmp/shatter-bench-render-surface";
@@ -49,7 +35,7 @@ int main(int argc, char** argv) {
         scene.trajectory = &trajectory;
         scene.scene = scene_settings;
         size_t triangles = 0;
-        for (const Piece& p : model->pieces) triangles += p.surface.triangles.size();
+        for (const Piece& p : model->pieces) triangles += p.render ? p.render->triangles.size() : p.surface.triangles.size();
         RenderSettings s;  // 1280x720, shadows, 4x MSAA
         RenderOptions options;
         options.progress = false;

@@ -50,7 +50,10 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     if (settings.shadows) shadow_map_ = std::make_unique<ShadowMap>(settings.shadow_map);
     for (uint32_t i = 0; i < t.pieces; ++i) {
         Item item;
-        item.mesh = std::make_unique<GpuMesh>(piece_vertices(scene.model->pieces[i], i, settings));
+        // A render surface is drawn indexed with its smooth normals; a tet surface as before.
+        const Piece& piece = scene.model->pieces[i];
+        item.mesh = piece.render ? std::make_unique<GpuMesh>(piece_mesh(piece, i, settings))
+                                 : std::make_unique<GpuMesh>(piece_vertices(piece, i, settings));
         item.body = int(i);
         item.specular = kPieceSpecular;
         items_.push_back(std::move(item));
