@@ -154,32 +154,36 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 }
 
 // Render surfaces (prescore/render_surface.h) for every piece, from `surface` (what the tets were
-// made from), within kRenderSurfaceWork; over it, the pieces keep their tet surfaces (a choice,
-// noted). One log line says what was done.
+// made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
+// pieces keep their tet surfaces (a choice, noted). One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
-    const double work = double(model.pieces.size()) * double(surface.triangles.size());
+    const auto start = std::chrono::steady_clock::now();
+    const TriangleMesh cut = simplify_surface(surface, kRenderSurfaceTriangles);
+    const double work = double(model.pieces.size()) * double(cut.triangles.size());
     if (work > kRenderSurfaceWork) {
         report.choices.note(
             "render surfaces: none, the pieces keep their tet surfaces",
             fmt::format("{} pieces x {} surface triangles = {:.3g} million, over the budget of {:.3g} million (about "
-                        "{:.0f} s); fewer pieces, a coarser mesh, or [prescore] render_surface = false to say so",
-                        model.pieces.size(), surface.triangles.size(), work / 1e6, kRenderSurfaceWork / 1e6,
+                        "{:.0f} s); fewer pieces, or [prescore] render_surface = false to say so",
+                        model.pieces.size(), cut.triangles.size(), work / 1e6, kRenderSurfaceWork / 1e6,
                         kRenderSurfaceWork * 2e-6));
         return;
     }
-    const auto start = std::chrono::steady_clock::now();
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
-    std::vector<RenderSurface> surfaces = render_surfaces(surface, model, rs);
+    std::vector<RenderSurface> surfaces =
+        render_surfaces(cut, model, rs, cut.triangles.size() < surface.triangles.size() ? &surface : nullptr);
     for (size_t p = 0; p < surfaces.size(); ++p) {
         report.render_fell_back += surfaces[p].fell_back;
         report.render_triangles += surfaces[p].triangles.size();
         model.pieces[p].render = std::move(surfaces[p]);
     }
     report.render_surfaces = surfaces.size();
-    spdlog::info("render surfaces: {} pieces cut from {} surface triangles (margin {:g} tet sizes, {:.4g} m) in {:.2f} "
-                 "s: {} triangles, {} on their tet surface",
-                 surfaces.size(), surface.triangles.size(), kRenderSurfaceMargin, rs.margin,
+    const std::string simplified =
+        cut.triangles.size() < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
+    spdlog::info("render surfaces: {} pieces cut from {} surface triangles{} (margin {:g} tet sizes, {:.4g} m) in "
+                 "{:.2f} s: {} triangles, {} on their tet surface",
+                 surfaces.size(), cut.triangles.size(), simplified, kRenderSurfaceMargin, rs.margin,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  report.render_triangles, report.render_fell_back);
 }
