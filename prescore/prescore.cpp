@@ -158,6 +158,13 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // pieces keep their tet surfaces (a choice, noted). One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
+    if (surface.triangles.size() > kRenderSurfaceSimplifyLimit) {
+        report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
+                            fmt::format("the surface has {} triangles, more than the {} that are simplified for "
+                                        "drawing within a few seconds; [prescore] render_surface = false to say so",
+                                        surface.triangles.size(), kRenderSurfaceSimplifyLimit));
+        return;
+    }
     const TriangleMesh cut = simplify_surface(surface, kRenderSurfaceTriangles);
     const double work = double(model.pieces.size()) * double(cut.triangles.size());
     if (work > kRenderSurfaceWork) {
