@@ -33,12 +33,13 @@ namespace shatter {
 // pays per triangle, in the shadow and the scene pass). The cut: each piece's cut corefines the
 // whole surface, so its work grows as pieces x surface triangles (measured ~2 us per triangle
 // and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
-// keep their tet surfaces. The simplification itself costs ~8 us per collapse (the demo's 69,666
-// triangles to 10,000 in ~0.5 s): a surface over kRenderSurfaceSimplifyLimit is not cut either.
+// keep their tet surfaces. The simplification's own cost grows with the surface (not measured
+// apart; the demo's simplification and cut together take 1.1-1.2 s): a surface over
+// kRenderSurfaceSimplifyLimit is not cut either.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
 inline constexpr size_t kRenderSurfaceTriangles = 10000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
-inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified (several s): none cut
+inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified: none cut
 
 // `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
 // (Lindstrom-Turk), deterministic. Returned as it is when already within, or when it is not a

@@ -51,8 +51,9 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     for (uint32_t i = 0; i < t.pieces; ++i) {
         Item item;
         // A render surface is drawn indexed with its smooth normals, and casts its shadow with the
-        // piece's tet surface (a few thousand triangles instead of tens of thousands: the shadow
-        // map stores back faces, so the coarser caster costs no acne); a tet surface as before.
+        // piece's tet surface (a few thousand triangles instead of tens of thousands; the shadow
+        // map holds the caster's back faces, which lie behind the drawn surface's lit side but in
+        // pieces thinner than the two surfaces' gap; no acne seen in the demo); a tet surface as before.
         const Piece& piece = scene.model->pieces[i];
         if (piece.render) {
             item.mesh = std::make_unique<GpuMesh>(piece_mesh(piece, i, settings));
