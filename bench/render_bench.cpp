@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     scene.trajectory = &trajectory;
     scene.scene = scene_settings;
     size_t triangles = 0;
-    for (const Piece& p : model.pieces) triangles += p.surface.triangles.size();
+    for (const Piece& p : model.pieces) triangles += p.render ? p.render->triangles.size() : p.surface.triangles.size();
 
     const std::string out = "/tmp/shatter-bench-render";
     std::printf("scene,width,height,shadows,shadow_map,msaa,msaa_region,png_writer,frames,triangles,seconds,fps,draw_ms,readback_ms,"

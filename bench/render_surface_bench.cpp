@@ -1,8 +1,11 @@
-// Render surfaces on a real mesh: prescore time, the cut's time, fallbacks, and how closely the
-// pieces' render surfaces follow the input (prescore/surface_agreement.h). Prints one CSV row.
+// Render surfaces on a real mesh: prescore time (without them), the cut's time, fallbacks, and
+// how closely the pieces' render surfaces follow the surface the tets were made from (the input,
+// or its wrap when prescore wrapped it; prescore/surface_agreement.h), unsimplified. The cut time
+// includes the simplification, as in prescore. Prints one CSV row.
 //   render_surface_bench MESH [scale 0: automatic] [pieces 10] [resolution 20] [hollow 0: solid]
-//                        [margin, in tet sizes 0.15]
+//                        [margin, in tet sizes 0.15] [most surface triangles cut: kRenderSurfaceTriangles, 0: all]
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -10,10 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
-#include "prescore/mesh_check.h"
-#include "meshio/mesh_load.h"
 #include "prescore/prescore.h"
-#include "prescore/repair.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"
 
@@ -32,25 +32,26 @@ int main(int argc, char** argv) {
     settings.pieces = static_cast<uint32_t>(arg(3, 10));
     settings.resolution = arg(4, 20);
     if (arg(5, 0) > 0) settings.hollow = Length{arg(5, 0), true};
-    const double margin_tets = arg(6, 0.15);
+    const double margin_tets = arg(6, kRenderSurfaceMargin);
+    const size_t max_triangles = argc > 7 && arg(7, 0) > 0 ? size_t(arg(7, 0)) : argc > 7 ? SIZE_MAX : kRenderSurfaceTriangles;
     if (std::getenv("SHATTER_DEBUG")) spdlog::set_level(spdlog::level::debug);
     try {
         using Clock = std::chrono::steady_clock;
+        // prescore without its render surfaces (timed), then the cut as prescore makes it, from
+        // the surface the tets were made from (the input, its wrap or its thickened wrap).
+        settings.render_surface = false;
         auto t0 = Clock::now();
         PrescoreReport report;
         const Model model = prescore(mesh, settings, &report);
         auto t1 = Clock::now();
-        TriangleMesh input = load_mesh_file(mesh.path).mesh;
-        for (Vec3& v : input.vertices) v *= report.scale;
-        if (check_mesh(input, false).volume < 0) orient_outward(input);
+        const TriangleMesh& input = report.surface;
         const double diagonal = report.input.diagonal;
-        // A wrapped input: cut the wrap, as prescore's first repair made it (a thickening wrap
-        // at another offset is not reproduced here).
-        if (report.repaired) input = alpha_wrap(input, mesh.wrap_alpha * diagonal, mesh.wrap_offset * diagonal);
         RenderSurfaceSettings rs;
         rs.margin = margin_tets * diagonal / report.resolution;
         auto t2 = Clock::now();
-        const std::vector<RenderSurface> surfaces = render_surfaces(input, model, rs);
+        const TriangleMesh simplified = simplify_surface(input, max_triangles);
+        const std::vector<RenderSurface> surfaces = render_surfaces(
+            simplified, model, rs, simplified.triangles.size() < input.triangles.size() ? &input : nullptr);
         auto t3 = Clock::now();
         size_t fell_back = 0, triangles = 0, tet_triangles = 0;
         for (const RenderSurface& s : surfaces) fell_back += s.fell_back, triangles += s.triangles.size();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,19 @@ struct PieceSurface {
     std::vector<Vec3> vertices;  // (unit: m, model frame)
     std::vector<Tri> triangles;  // outward oriented
     std::vector<FaceKind> kinds; // one per triangle
+};
+
+// What a piece looks like, apart from what it simulates with (tets, mass, collision parts): the
+// surface prescore's tets were made from, cut along the piece's fracture faces
+// (prescore/render_surface.h). Render, the .glb and OUT.pieces.ply draw it instead of the tet
+// surface when a piece has one: indexed, outer faces with smooth per-vertex normals, fracture and
+// cavity faces flat (their vertices carry the face normal).
+struct RenderSurface {
+    std::vector<Vec3> vertices;  // (unit: m, model frame)
+    std::vector<Vec3> normals;   // unit, one per vertex
+    std::vector<Tri> triangles;  // outward oriented
+    std::vector<FaceKind> kinds; // one per triangle
+    bool fell_back = false;      // the tet surface, flat shaded (the cut failed for this piece)
 };
 
 struct MassProperties {
@@ -44,6 +58,7 @@ struct Piece {
     MassProperties mass;
     std::vector<ConvexPart> collision;
     bool connected = true;       // its tets form one face-connected component
+    std::optional<RenderSurface> render;  // how it is drawn; none: its tet surface, flat (model version 1)
 };
 
 // A point constraint joining two pieces at a vertex of a face they share.

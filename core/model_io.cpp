@@ -1,5 +1,7 @@
 #include "core/model_io.h"
 
+#include <cmath>
+
 #include "core/atomic_file.h"
 #include "core/binary_io.h"
 #include "core/stage_file.h"
@@ -35,6 +37,51 @@ PieceSurface get_surface(ByteReader& r) {
     return s;
 }
 
+// Version 2: after `connected`, u8 1 and the render surface, or u8 0 (docs/formats.md).
+void put_render_surface(ByteWriter& w, const std::optional<RenderSurface>& rs) {
+    w.u8(rs ? 1 : 0);
+    if (!rs) return;
+    w.u32(static_cast<uint32_t>(rs->vertices.size()));
+    for (size_t i = 0; i < rs->vertices.size(); ++i) {
+        w.vec3(rs->vertices[i]);
+        w.vec3(rs->normals[i]);
+    }
+    w.u32(static_cast<uint32_t>(rs->triangles.size()));
+    for (size_t i = 0; i < rs->triangles.size(); ++i) {
+        for (uint32_t v : rs->triangles[i]) w.u32(v);
+        w.u8(static_cast<uint8_t>(rs->kinds[i]));
+    }
+    w.u8(rs->fell_back ? 1 : 0);
+}
+
+std::optional<RenderSurface> get_render_surface(ByteReader& r) {
+    const uint8_t present = r.u8();
+    if (present > 1) r.fail("render surface flag " + std::to_string(present) + " (0 or 1)");
+    if (!present) return std::nullopt;
+    RenderSurface s;
+    const uint32_t nv = r.count(48, "render surface vertices");
+    s.vertices.resize(nv);
+    s.normals.resize(nv);
+    for (uint32_t i = 0; i < nv; ++i) {
+        s.vertices[i] = r.finite_vec3("a render surface vertex");
+        s.normals[i] = r.finite_vec3("a render surface normal");
+        if (std::abs(s.normals[i].norm() - 1) > 1e-3) r.fail("a render surface normal is not of unit length");
+    }
+    const uint32_t n = r.count(13, "render surface triangles");
+    s.triangles.resize(n);
+    s.kinds.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t& v : s.triangles[i]) v = r.index(nv, "render surface vertex index");
+        uint8_t kind = r.u8();
+        if (kind > static_cast<uint8_t>(FaceKind::Cavity)) r.fail("unknown face kind " + std::to_string(kind));
+        s.kinds[i] = static_cast<FaceKind>(kind);
+    }
+    const uint8_t fell_back = r.u8();
+    if (fell_back > 1) r.fail("render surface fell_back flag " + std::to_string(fell_back) + " (0 or 1)");
+    s.fell_back = fell_back == 1;
+    return s;
+}
+
 void put_piece(ByteWriter& w, const Piece& p) {
     w.u32(static_cast<uint32_t>(p.tets.size()));
     for (uint32_t t : p.tets) w.u32(t);
@@ -51,9 +98,10 @@ void put_piece(ByteWriter& w, const Piece& p) {
         w.f64(part.hull_volume);
     }
     w.u8(p.connected ? 1 : 0);
+    put_render_surface(w, p.render);
 }
 
-Piece get_piece(ByteReader& r, uint32_t tet_count) {
+Piece get_piece(ByteReader& r, uint32_t tet_count, uint32_t version) {
     Piece p;
     p.tets.resize(r.count(4, "piece tets"));
     for (uint32_t& t : p.tets) t = r.index(tet_count, "piece tet");
@@ -70,6 +118,7 @@ Piece get_piece(ByteReader& r, uint32_t tet_count) {
         part.hull_volume = r.finite_f64("collision hull volume");
     }
     p.connected = r.u8() != 0;
+    if (version >= 2) p.render = get_render_surface(r);
     return p;
 }
 
@@ -121,7 +170,7 @@ Model decode_model(std::string_view bytes, const std::string& source) {
     for (uint32_t t = 0; t < nt; ++t)
         if (m.tet_piece[t] >= np) r.fail("tet " + std::to_string(t) + " names piece " + std::to_string(m.tet_piece[t]) +
                                          " of " + std::to_string(np));
-    for (Piece& p : m.pieces) p = get_piece(r, nt);
+    for (Piece& p : m.pieces) p = get_piece(r, nt, f.header.version);
     m.constraints.resize(r.count(44, "constraints"));
     for (Constraint& c : m.constraints) {
         c.piece_a = r.index(np, "constraint piece");

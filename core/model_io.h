@@ -9,7 +9,9 @@
 namespace shatter {
 
 constexpr std::string_view kModelMagic = "SHTMODEL";
-constexpr uint32_t kModelVersion = 1;  // the version written; the reader accepts 1..kModelVersion
+// The version written; the reader accepts 1..kModelVersion. 2: pieces may carry a render surface
+// (version 1 files read with none: their pieces are drawn with the tet surface).
+constexpr uint32_t kModelVersion = 2;
 
 std::string encode_model(const Model& model);
 // Decodes and validates (every index in range, every number finite); throws Error(BadInput)

@@ -163,7 +163,12 @@ SettingsSection prescore_section() {
                    kConstraintsPerPairLimits,
                    "most constraints joining two pieces: farthest-point sampled, keeping the pair's total area")
                  .shows("0 (all)")
-                 .flag("--constraints-per-pair")},
+                 .flag("--constraints-per-pair"),
+             boolean("render_surface", at(&Shot::prescore, &PrescoreSettings::render_surface),
+                     "draw each piece with the input surface cut along its fracture faces, smooth-shaded (false: its "
+                     "tet surface, flat)")
+                 .json_unless_default()
+                 .flag("--no-render-surface", FlagKind::SetsFalse)},
             {}};
 }
 

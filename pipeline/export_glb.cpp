@@ -14,9 +14,10 @@
 //
 // A node's transform is then exactly the trajectory's pose [R | p] (BodyPose: world =
 // R (x - origin) + p), and its rest transform is the pose of frame 0, for viewers that do not
-// play animations. Vertices are flat-shaded (render/mesh_builder's piece, box and sphere
-// vertices, so that the .glb shows the facets render shows); the exporter's enforced
-// JoinIdenticalVertices step shares the vertices of coplanar neighbours again.
+// play animations. Vertices are render/mesh_builder's, so that the .glb shows what render shows:
+// a piece's render surface indexed with its normals (outer faces smooth, fracture faces flat),
+// else its tet surface, and boxes and spheres, flat; the exporter's enforced
+// JoinIdenticalVertices step shares the vertices of coplanar flat neighbours again.
 //
 // Facts of assimp 5.2 this relies on (read in its glTF2 exporter and importer, and tested in
 // tests/pipeline/glb_test.cpp):
@@ -44,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string_view>
@@ -87,8 +89,10 @@ aiMaterial* make_material(const std::string& name, const Colour& c) {
     return m;
 }
 
-// A triangle soup (three vertices per triangle, as render/mesh_builder makes them) as an aiMesh.
-aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsigned material) {
+// Vertices as an aiMesh: a triangle soup (three vertices per triangle, as render/mesh_builder's
+// flat vertices are) when `indices` is null, else the triangles `indices` names (three each).
+aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsigned material,
+                  const uint32_t* indices = nullptr, size_t index_count = 0) {
     auto* m = new aiMesh();
     m->mName = aiString(name);
     m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -100,11 +104,12 @@ aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsign
         m->mVertices[i] = aiVector3D(v[i].position[0], v[i].position[1], v[i].position[2]);
         m->mNormals[i] = aiVector3D(v[i].normal[0], v[i].normal[1], v[i].normal[2]);
     }
-    m->mNumFaces = static_cast<unsigned>(count / 3);
+    m->mNumFaces = static_cast<unsigned>((indices ? index_count : count) / 3);
     m->mFaces = new aiFace[m->mNumFaces];
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
         m->mFaces[f].mNumIndices = 3;
-        m->mFaces[f].mIndices = new unsigned[3]{3 * f, 3 * f + 1, 3 * f + 2};
+        m->mFaces[f].mIndices = indices ? new unsigned[3]{indices[3 * f], indices[3 * f + 1], indices[3 * f + 2]}
+                                        : new unsigned[3]{3 * f, 3 * f + 1, 3 * f + 2};
     }
     return m;
 }
@@ -139,23 +144,33 @@ struct SceneParts {
     }
 };
 
-// A piece's node: one mesh per face kind present, vertices about its centre of mass.
+// A piece's node: one mesh per face kind present, vertices about its centre of mass: its render
+// surface with its normals when it has one (outer faces smooth), else its tet surface, flat.
 void add_piece(SceneParts& parts, const Piece& piece, uint32_t id) {
     const RenderSettings look;  // render's default colours: palette base, fracture tint, cavity shade
-    const std::vector<Vertex> vertices = piece_vertices(piece, id, look);  // 3 per triangle, in order
+    const IndexedVertices all = piece_mesh(piece, id, look);
+    const std::vector<FaceKind>& kinds = piece_mesh_kinds(piece);
     const std::string name = fmt::format("piece_{}", id);
     std::vector<unsigned> mesh_ids;
     for (FaceKind kind : {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity}) {
-        std::vector<Vertex> part;
-        for (size_t t = 0; t < piece.surface.kinds.size(); ++t)
-            if (piece.surface.kinds[t] == kind) part.insert(part.end(), &vertices[3 * t], &vertices[3 * t + 3]);
-        if (part.empty()) continue;
+        // The triangles of this kind, their vertices renumbered in first use.
+        IndexedVertices part;
+        std::vector<uint32_t> index(all.vertices.size(), UINT32_MAX);
+        for (size_t t = 0; t < kinds.size(); ++t) {
+            if (kinds[t] != kind) continue;
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = all.indices[3 * t + size_t(k)];
+                if (index[v] == UINT32_MAX) index[v] = static_cast<uint32_t>(part.vertices.size()), part.vertices.push_back(all.vertices[v]);
+                part.indices.push_back(index[v]);
+            }
+        }
+        if (part.indices.empty()) continue;
         // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
         const unsigned material = parts.material(fmt::format("palette_{}_{}", id % 36, kind_name(kind)),
                                                  face_colour(piece_base_colour(id, look), kind, look));
         mesh_ids.push_back(static_cast<unsigned>(parts.meshes.size()));
-        parts.meshes.push_back(make_mesh(fmt::format("{}_{}", name, kind_name(kind)), part.data(), part.size(),
-                                         material));
+        parts.meshes.push_back(make_mesh(fmt::format("{}_{}", name, kind_name(kind)), part.vertices.data(),
+                                         part.vertices.size(), material, part.indices.data(), part.indices.size()));
     }
     parts.node(name, mesh_ids);
 }

@@ -69,6 +69,10 @@ nlohmann::ordered_json model_summary(const Model& m) {
                        {"constraints", m.constraints.size()},
                        {"collision_parts", parts},
                        {"tets", m.mesh.tets.size()}};
+    size_t with_render = 0, render_triangles = 0, fell_back = 0;
+    for (const Piece& p : m.pieces)
+        if (p.render) ++with_render, render_triangles += p.render->triangles.size(), fell_back += p.render->fell_back;
+    j["render_surfaces"] = {{"pieces", with_render}, {"triangles", render_triangles}, {"fell_back", fell_back}};
     j["per_piece"] = std::move(pieces);
     j["per_pair"] = std::move(pair_list);
     return j;
@@ -86,6 +90,13 @@ std::string model_summary_text(const nlohmann::ordered_json& j) {
                        j["volume_m3"].get<double>());
     out += fmt::format("connected     {}\n", j["all_pieces_connected"].get<bool>() ? "every piece is one component"
                                                                                   : "SOME PIECES ARE SPLIT");
+    const auto& rs = j["render_surfaces"];
+    if (rs["pieces"].get<size_t>() == 0)
+        out += "render        the tet surfaces (no render surfaces)\n";
+    else
+        out += fmt::format("render        render surfaces on {} of {} pieces, {} triangles ({} on the tet surface)\n",
+                           rs["pieces"].get<size_t>(), j["pieces"].get<size_t>(), rs["triangles"].get<size_t>(),
+                           rs["fell_back"].get<size_t>());
     out += "\npiece   tets   volume(m^3)    mass(kg)  parts  fracture-tris  connected\n";
     for (const auto& p : j["per_piece"])
         out += fmt::format("{:5} {:6} {:13.6g} {:11.6g} {:6} {:14} {:>10}\n", p["piece"].get<int>(),

@@ -21,6 +21,7 @@
 #include "meshio/mesh_load.h"
 #include "prescore/partition.h"
 #include "prescore/piece_surface.h"
+#include "prescore/render_surface.h"
 #include "prescore/repair.h"
 #include "prescore/tet_topology.h"
 #include "prescore/tetrahedralize.h"
@@ -152,6 +153,48 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
     }
 }
 
+// Render surfaces (prescore/render_surface.h) for every piece, from `surface` (what the tets were
+// made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
+// pieces keep their tet surfaces (a choice, noted). One log line says what was done.
+void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
+    const auto start = std::chrono::steady_clock::now();
+    if (surface.triangles.size() > kRenderSurfaceSimplifyLimit) {
+        report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
+                            fmt::format("the surface has {} triangles, more than the {} that are simplified for "
+                                        "drawing within a few seconds; [prescore] render_surface = false to say so",
+                                        surface.triangles.size(), kRenderSurfaceSimplifyLimit));
+        return;
+    }
+    const TriangleMesh cut = simplify_surface(surface, kRenderSurfaceTriangles);
+    const double work = double(model.pieces.size()) * double(cut.triangles.size());
+    if (work > kRenderSurfaceWork) {
+        report.choices.note(
+            "render surfaces: none, the pieces keep their tet surfaces",
+            fmt::format("{} pieces x {} surface triangles = {:.3g} million, over the budget of {:.3g} million (about "
+                        "{:.0f} s); fewer pieces, or [prescore] render_surface = false to say so",
+                        model.pieces.size(), cut.triangles.size(), work / 1e6, kRenderSurfaceWork / 1e6,
+                        kRenderSurfaceWork * 2e-6));
+        return;
+    }
+    RenderSurfaceSettings rs;
+    rs.margin = kRenderSurfaceMargin * tet_size;
+    std::vector<RenderSurface> surfaces =
+        render_surfaces(cut, model, rs, cut.triangles.size() < surface.triangles.size() ? &surface : nullptr);
+    for (size_t p = 0; p < surfaces.size(); ++p) {
+        report.render_fell_back += surfaces[p].fell_back;
+        report.render_triangles += surfaces[p].triangles.size();
+        model.pieces[p].render = std::move(surfaces[p]);
+    }
+    report.render_surfaces = surfaces.size();
+    const std::string simplified =
+        cut.triangles.size() < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
+    spdlog::info("render surfaces: {} pieces cut from {} surface triangles{} (margin {:g} tet sizes, {:.4g} m) in "
+                 "{:.2f} s: {} triangles, {} on their tet surface",
+                 surfaces.size(), cut.triangles.size(), simplified, kRenderSurfaceMargin, rs.margin,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 report.render_triangles, report.render_fell_back);
+}
+
 }  // namespace
 
 Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out) {
@@ -207,13 +250,18 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     Partition part = partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt, choices);
     model.tet_piece = std::move(part.tet_piece);
     model.pieces.resize(part.piece_tets.size());
-    model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices);
     timer.lap("partition");
     model.constraints = reduce_constraints(place_constraints(model.mesh, topo, model.tet_piece),
                                            settings.constraints_per_pair);
     timer.lap("constraints");
     build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
     timer.lap("pieces");
+    if (settings.render_surface) {
+        add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, report);
+        timer.lap("render surfaces");
+    }
+    report.surface = std::move(fit.surface);
+    model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices);
     return model;
 }
 

@@ -33,6 +33,10 @@ struct PrescoreReport {
     double scale = 1;                // metres per file unit, as chosen (prescore/adapt.h)
     double resolution = 0;           // cells per diagonal, as used
     AutoChoices choices;             // what prescore chose for this mesh, and why
+    TriangleMesh surface;            // the closed surface the tets were made from (the input, its wrap or thickened wrap)
+    size_t render_surfaces = 0;      // pieces given a render surface (fell back ones included)
+    size_t render_fell_back = 0;     // of those, pieces on their tet surface
+    size_t render_triangles = 0;     // triangles of every render surface
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
 

@@ -27,13 +27,24 @@
 
 namespace shatter {
 
-struct RenderSurface {
-    std::vector<Vec3> vertices;  // (unit: m, model frame)
-    std::vector<Vec3> normals;   // unit, one per vertex
-    std::vector<Tri> triangles;  // outward oriented
-    std::vector<FaceKind> kinds; // one per triangle
-    bool fell_back = false;      // the tet surface, flat shaded
-};
+// What prescore uses (docs/render.md, "Render surfaces"): the margin in tet sizes (diagonal /
+// resolution), and two budgets. Drawing: a surface of more than kRenderSurfaceTriangles is
+// simplified to that many first (edge collapse), so that render keeps its frame rate (llvmpipe
+// pays per triangle, in the shadow and the scene pass). The cut: each piece's cut corefines the
+// whole surface, so its work grows as pieces x surface triangles (measured ~2 us per triangle
+// and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
+// keep their tet surfaces. The simplification's own cost grows with the surface (not measured
+// apart; the demo's simplification and cut together take 1.1-1.2 s): a surface over
+// kRenderSurfaceSimplifyLimit is not cut either.
+inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
+inline constexpr size_t kRenderSurfaceTriangles = 10000;      // most surface triangles cut
+inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
+inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified: none cut
+
+// `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
+// (Lindstrom-Turk), deterministic. Returned as it is when already within, or when it is not a
+// closed polygon mesh.
+TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
 
 struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
@@ -42,8 +53,11 @@ struct RenderSurfaceSettings {
 
 // One render surface per model piece; `input` is the closed, outward surface the tets were
 // made from (the alpha wrap when prescore wrapped the input).
+// `retry`, when given, is the surface `input` was simplified from: a piece whose cut fails on
+// `input` is cut again from it (a simplified surface may cross itself where it is cut).
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
-                                           const RenderSurfaceSettings& settings);
+                                           const RenderSurfaceSettings& settings,
+                                           const TriangleMesh* retry = nullptr);
 
 // The piece's tet surface as a render surface: flat, three vertices per triangle.
 RenderSurface flat_render_surface(const PieceSurface& surface);

@@ -7,6 +7,9 @@
 #include "prescore/render_surface.h"
 
 #include <map>
+#include <memory>
+#include <optional>
+#include <string_view>
 #include <tuple>
 
 #include <CGAL/AABB_traits.h>
@@ -21,6 +24,9 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <spdlog/spdlog.h>
 
 #include "prescore/tet_topology.h"
@@ -269,26 +275,84 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
 
 }  // namespace
 
-std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
-                                           const RenderSurfaceSettings& settings) {
-    const TetTopology topo = build_topology(model.mesh);
-    const std::vector<Cell> cells = cells_of(model, topo);
-    Input in{input, corner_normals(input, settings.crease_degrees), {}, {}};
+TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles) {
+    if (surface.triangles.size() <= max_triangles) return surface;
+    std::vector<Point> points;
+    for (const Vec3& v : surface.vertices) points.emplace_back(v.x(), v.y(), v.z());
+    Soup soup;
+    for (const Tri& t : surface.triangles) soup.push_back({t[0], t[1], t[2]});
+    Mesh mesh;
+    if (!soup_to_mesh(points, soup, mesh) || !CGAL::is_triangle_mesh(mesh)) return surface;
+    // Lindstrom-Turk cost and placement (the default), no collapse that turns a face over (fewer
+    // self-intersections for the cut); a closed triangle mesh has 3/2 edges per face.
+    namespace SMS = CGAL::Surface_mesh_simplification;
+    SMS::Count_stop_predicate<Mesh> stop(max_triangles * 3 / 2);
+    SMS::edge_collapse(mesh, stop, CGAL::parameters::filter(SMS::Bounded_normal_change_filter<>()));
+    mesh.collect_garbage();
+    TriangleMesh out;
+    out.vertices.reserve(mesh.number_of_vertices());
+    for (auto v : mesh.vertices()) out.vertices.push_back(vec(mesh.point(v)));
+    for (auto f : mesh.faces()) {
+        Tri t;
+        int k = 0;
+        for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+            if (k < 3) t[size_t(k++)] = uint32_t(v);
+        if (k == 3) out.triangles.push_back(t);
+    }
+    return out;
+}
+
+namespace {
+
+// A surface to cut: its triangles for the nearest-triangle queries, corner normals, and itself as
+// a CGAL mesh (`ok`: a closed polygon mesh).
+struct Cuttable {
+    std::unique_ptr<Input> in;
+    Mesh whole;
+    bool ok = false;
+};
+
+Cuttable cuttable(const TriangleMesh& input, double crease_degrees) {
+    Cuttable c;
+    c.in.reset(new Input{input, corner_normals(input, crease_degrees), {}, {}});
+    Input& in = *c.in;
     in.triangles.reserve(input.triangles.size());
-    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Tri& t : input.triangles)
         in.triangles.emplace_back(spoint(input.vertices[t[0]]), spoint(input.vertices[t[1]]), spoint(input.vertices[t[2]]));
-    for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     in.tree.rebuild(in.triangles.cbegin(), in.triangles.cend());
     in.tree.accelerate_distance_queries();
-    const double eps = 1e-7 * (hi - lo).norm();
-
     std::vector<Point> points;
     for (const Vec3& v : input.vertices) points.emplace_back(v.x(), v.y(), v.z());
     Soup soup;
     for (const Tri& t : input.triangles) soup.push_back({t[0], t[1], t[2]});
-    Mesh whole;
-    const bool input_ok = !input.triangles.empty() && soup_to_mesh(points, soup, whole);
+    c.ok = !input.triangles.empty() && soup_to_mesh(points, soup, c.whole);
+    return c;
+}
+
+// corefine_and_compute_intersection(surface, cell); empty with `why` set when it fails.
+Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
+    Mesh a = whole, cut;
+    try {
+        if (!PMP::corefine_and_compute_intersection(a, cell, cut)) *why = "the cut failed";
+        else if (cut.number_of_faces() == 0) *why = "the cut is empty";
+    } catch (const std::exception&) {
+        *why = "the cut threw";
+    }
+    return cut;
+}
+
+}  // namespace
+
+std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
+                                           const RenderSurfaceSettings& settings, const TriangleMesh* retry) {
+    const TetTopology topo = build_topology(model.mesh);
+    const std::vector<Cell> cells = cells_of(model, topo);
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const double eps = 1e-7 * (hi - lo).norm();
+    const Cuttable first = cuttable(input, settings.crease_degrees);
+    const bool input_ok = first.ok;
+    std::optional<Cuttable> second;  // `retry`, made when first needed
 
     // The largest margin of the ladder at which every cell is a valid closed surface (fewest
     // failures otherwise, the larger margin on a tie).
@@ -316,26 +380,32 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     }
 
     std::vector<RenderSurface> out;
-    size_t fell_back = 0;
+    size_t fell_back = 0, retried = 0;
     for (size_t p = 0; p < model.pieces.size(); ++p) {
         Mesh cut;
-        if (!why[p]) {
-            Mesh a = whole;
-            try {
-                if (!PMP::corefine_and_compute_intersection(a, cell[p], cut)) why[p] = "the cut failed";
-                else if (cut.number_of_faces() == 0) why[p] = "the cut is empty";
-            } catch (const std::exception&) {
-                why[p] = "the cut threw";
-            }
+        const Input* in = first.in.get();
+        if (!why[p]) cut = cut_cell(first.whole, cell[p], &why[p]);
+        if (why[p] && retry && input_ok && std::string_view(why[p]) != "its cell is not a closed surface" &&
+            std::string_view(why[p]) != "its cell self-intersects") {
+            // The cut failed on `input` (a simplified surface can cross itself where the cell
+            // cuts it): the same cell on the surface it was simplified from.
+            if (!second) second = cuttable(*retry, settings.crease_degrees);
+            spdlog::debug("render surface of piece {}: {} on the simplified surface; cut again from the full one", p, why[p]);
+            why[p] = nullptr;
+            if (second->ok) cut = cut_cell(second->whole, cell[p], &why[p]);
+            else why[p] = "the full surface is not a closed polygon mesh";
+            in = second->in.get();
+            ++retried;
         }
         if (!why[p]) {
-            out.push_back(collect(cut, in, cells[p], pushed, eps));
+            out.push_back(collect(cut, *in, cells[p], pushed, eps));
         } else {
             spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
             out.push_back(flat_render_surface(model.pieces[p].surface));
             ++fell_back;
         }
     }
+    if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());
     if (fell_back) spdlog::info("render surfaces: {} of {} pieces keep their tet surface", fell_back, out.size());
     return out;
 }

@@ -56,6 +56,7 @@ public:
 private:
     struct Item {
         std::unique_ptr<GpuMesh> mesh;
+        std::unique_ptr<GpuMesh> shadow_mesh;  // drawn into the shadow map instead of `mesh`, when set
         int body = -1;  // trajectory body (pieces, then props); -1: static
         Eigen::Matrix4f model = Eigen::Matrix4f::Identity();  // for static items
         bool closed = true;   // back faces may be culled

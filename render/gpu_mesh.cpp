@@ -6,6 +6,16 @@
 
 namespace shatter {
 
+GpuMesh::GpuMesh(const IndexedVertices& mesh) : GpuMesh(mesh.vertices) {
+    count_ = static_cast<int>(mesh.indices.size());
+    glBindVertexArray(vao_);
+    glGenBuffers(1, &ebo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);  // recorded in the vertex array
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
+                 GL_STATIC_DRAW);
+    glBindVertexArray(0);
+}
+
 GpuMesh::GpuMesh(const std::vector<Vertex>& vertices) : count_(static_cast<int>(vertices.size())) {
     for (const Vertex& v : vertices) bounds_.extend(Eigen::Vector3f(v.position[0], v.position[1], v.position[2]));
     glGenVertexArrays(1, &vao_);
@@ -24,6 +34,7 @@ GpuMesh::GpuMesh(const std::vector<Vertex>& vertices) : count_(static_cast<int>(
 }
 
 GpuMesh::~GpuMesh() {
+    if (ebo_) glDeleteBuffers(1, &ebo_);
     glDeleteBuffers(1, &vbo_);
     glDeleteVertexArrays(1, &vao_);
 }
@@ -31,7 +42,10 @@ GpuMesh::~GpuMesh() {
 void GpuMesh::draw() const {
     if (count_ == 0) return;
     glBindVertexArray(vao_);
-    glDrawArrays(GL_TRIANGLES, 0, count_);
+    if (ebo_)
+        glDrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
+    else
+        glDrawArrays(GL_TRIANGLES, 0, count_);
 }
 
 }  // namespace shatter

@@ -1,5 +1,5 @@
-// A vertex array on the GL side: the flat-shaded vertices of render/mesh_builder.h in one buffer,
-// drawn as a triangle list.
+// A vertex array on the GL side: the vertices of render/mesh_builder.h in one buffer, drawn as a
+// triangle list, either unindexed (three vertices per triangle) or with an index buffer.
 #pragma once
 
 #include <vector>
@@ -13,6 +13,7 @@ namespace shatter {
 class GpuMesh {
 public:
     explicit GpuMesh(const std::vector<Vertex>& vertices);
+    explicit GpuMesh(const IndexedVertices& mesh);
     ~GpuMesh();
     GpuMesh(const GpuMesh&) = delete;
     GpuMesh& operator=(const GpuMesh&) = delete;
@@ -23,7 +24,8 @@ private:
     Eigen::AlignedBox3f bounds_;
     unsigned vao_ = 0;
     unsigned vbo_ = 0;
-    int count_ = 0;
+    unsigned ebo_ = 0;   // 0: unindexed
+    int count_ = 0;      // vertices (unindexed) or indices drawn
 };
 
 }  // namespace shatter

@@ -1,6 +1,7 @@
 #include "render/mesh_builder.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/palette.h"
 
@@ -54,6 +55,48 @@ std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const Render
                      by_kind[static_cast<int>(surf.kinds[t]) % 3]);
     }
     return out;
+}
+
+IndexedVertices piece_mesh(const Piece& piece, uint32_t id, const RenderSettings& s) {
+    IndexedVertices out;
+    if (!piece.render) {
+        out.vertices = piece_vertices(piece, id, s);
+        out.indices.resize(out.vertices.size());
+        for (uint32_t i = 0; i < out.indices.size(); ++i) out.indices[i] = i;
+        return out;
+    }
+    const RenderSurface& rs = *piece.render;
+    const Colour base = piece_base_colour(id, s);
+    const Colour by_kind[3] = {face_colour(base, FaceKind::Outer, s), face_colour(base, FaceKind::Fracture, s),
+                               face_colour(base, FaceKind::Cavity, s)};
+    const Vec3& c = piece.mass.center;
+    // One copy of a vertex per kind that uses it, made at its first use.
+    std::vector<std::array<uint32_t, 3>> copy(rs.vertices.size(), {UINT32_MAX, UINT32_MAX, UINT32_MAX});
+    out.vertices.reserve(rs.vertices.size());
+    out.indices.reserve(3 * rs.triangles.size());
+    for (size_t t = 0; t < rs.triangles.size(); ++t) {
+        const int kind = static_cast<int>(rs.kinds[t]) % 3;
+        for (uint32_t v : rs.triangles[t]) {
+            uint32_t& index = copy[v][size_t(kind)];
+            if (index == UINT32_MAX) {
+                index = static_cast<uint32_t>(out.vertices.size());
+                Vertex x{};
+                const Vec3 p = rs.vertices[v] - c;
+                for (int i = 0; i < 3; ++i) {
+                    x.position[i] = static_cast<float>(p[i]);
+                    x.normal[i] = static_cast<float>(rs.normals[v][i]);
+                    x.colour[i] = by_kind[kind][size_t(i)];
+                }
+                out.vertices.push_back(x);
+            }
+            out.indices.push_back(index);
+        }
+    }
+    return out;
+}
+
+const std::vector<FaceKind>& piece_mesh_kinds(const Piece& piece) {
+    return piece.render ? piece.render->kinds : piece.surface.kinds;
 }
 
 std::vector<Vertex> box_vertices(const Vec3& size, const Colour& c) {

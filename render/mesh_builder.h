@@ -1,7 +1,9 @@
-// The triangles render draws, built on the CPU as flat-shaded vertex arrays: every triangle has
-// its own three vertices carrying the face normal and the face colour (linear RGB). Flat
-// shading keeps the tet facets and the fracture faces crisp, and per-vertex colour lets one
-// draw call show a piece's outer, fracture and cavity faces in their own shades.
+// The triangles render draws, built on the CPU. Shapes and tet surfaces are flat-shaded vertex
+// arrays: every triangle has its own three vertices carrying the face normal and the face colour
+// (linear RGB). A piece with a render surface (core/model.h) is indexed instead: its vertices
+// carry the surface's per-vertex normals (smooth on the outer faces, the face normal on fracture
+// and cavity faces, which stay crisp) and are shared by the triangles that use them. Per-vertex
+// colour lets one draw call show a piece's outer, fracture and cavity faces in their own shades.
 //
 // Positions are in the body's own frame: a piece's vertices relative to its centre of mass (the
 // trajectory's origin for pieces), shapes about their own origin, so that a body's model matrix
@@ -31,7 +33,20 @@ Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s);
 // the material colour.
 Colour piece_base_colour(uint32_t id, const RenderSettings& s);
 
+// Vertices and triangle indices (three per triangle); `indices` in triangle order.
+struct IndexedVertices {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+};
+
+// The piece's tet surface, flat: three vertices per triangle, in the surface's triangle order.
 std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const RenderSettings& s);
+// What render draws for a piece: its render surface when it has one (a vertex used by faces of
+// two kinds gets a copy per kind, for the colours), else its tet surface (piece_vertices,
+// indexed 0, 1, 2, ...). Triangles in the surface's order; positions about the centre of mass.
+IndexedVertices piece_mesh(const Piece& piece, uint32_t id, const RenderSettings& s);
+// The kind of each triangle of piece_mesh().
+const std::vector<FaceKind>& piece_mesh_kinds(const Piece& piece);
 std::vector<Vertex> box_vertices(const Vec3& size, const Colour& c);       // full extents, centred
 std::vector<Vertex> sphere_vertices(double radius, const Colour& c);        // 48 x 24 segments
 std::vector<Vertex> quad_vertices(double half_extent, const Colour& c);     // y = 0, facing +y

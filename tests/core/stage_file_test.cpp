@@ -28,6 +28,13 @@ Model small_model() {
         p.mass.inertia = Mat3::Identity() * 3;
         p.collision.push_back({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}, 1.0 / 6, 1.0 / 6});
     }
+    // Piece 1 has a render surface (version 2), piece 0 none.
+    RenderSurface rs;
+    rs.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    rs.normals = {Vec3(0, 0, -1), Vec3(0.6, 0, -0.8), Vec3(0, 0.6, -0.8), Vec3(0, 1, 0)};
+    rs.triangles = {{0, 2, 1}, {0, 1, 3}};
+    rs.kinds = {FaceKind::Outer, FaceKind::Fracture};
+    m.pieces[1].render = rs;
     m.constraints = {{0, 1, 1, Vec3(1, 0, 0), 0.1}, {0, 1, 2, Vec3(0, 1, 0), 0.2}};
     return m;
 }
@@ -52,7 +59,22 @@ TEST(ModelFile, RoundTripKeepsEveryFieldAndEncodesToTheSameBytes) {
     EXPECT_EQ(back.pieces[1].mass.center, m.pieces[1].mass.center);
     EXPECT_EQ(back.pieces[1].surface.kinds[0], FaceKind::Fracture);
     EXPECT_EQ(back.constraints[1].area, 0.2);
+    EXPECT_FALSE(back.pieces[0].render);
+    ASSERT_TRUE(back.pieces[1].render);
+    EXPECT_EQ(back.pieces[1].render->vertices, m.pieces[1].render->vertices);
+    EXPECT_EQ(back.pieces[1].render->normals, m.pieces[1].render->normals);
+    EXPECT_EQ(back.pieces[1].render->triangles, m.pieces[1].render->triangles);
+    EXPECT_EQ(back.pieces[1].render->kinds, m.pieces[1].render->kinds);
+    EXPECT_FALSE(back.pieces[1].render->fell_back);
     EXPECT_EQ(encode_model(back), bytes);
+}
+
+TEST(ModelFile, RenderSurfaceWithANormalNotOfUnitLengthIsRefused) {
+    Model m = small_model();
+    m.pieces[1].render->normals[2] = Vec3(0, 0.5, 0);
+    std::string message;
+    EXPECT_EQ(decode_error(encode_model(m), &message), ExitCode::BadInput);
+    EXPECT_NE(message.find("render surface normal is not of unit length"), std::string::npos) << message;
 }
 
 TEST(ModelFile, EveryTruncationIsRefusedWithAClearError) {

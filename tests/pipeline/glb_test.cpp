@@ -12,6 +12,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -19,7 +20,10 @@
 #include <iostream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
+#include "core/model_io.h"
 #include "core/palette.h"
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
@@ -453,6 +457,50 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
     EXPECT_NEAR(last->mPositionKeys[kFewFrames - 1].mValue.y, m.pieces[999].mass.center.y() - 0.1, 1e-5);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(g.scene->mMeshes[g.node("piece_999")->mMeshes[0]])[i],
                                             piece_colour(999)[i], 1e-6);
+}
+
+// A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each
+// piece exports its render surface, indexed, with its normals (the cube's outer faces: the axes),
+// one primitive per face kind, and the Khronos validator reports no errors.
+TEST(GlbExport, RenderSurfacesExportIndexedWithTheirNormals) {
+    TempDir dir;
+    const Model m = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v2.model");
+    export_glb(m, test_trajectory(m, kFrames, false), dir.file("r.glb"));
+    Imported g(dir.file("r.glb"));
+    ASSERT_TRUE(g.scene);
+    for (uint32_t i = 0; i < m.pieces.size(); ++i) {
+        ASSERT_TRUE(m.pieces[i].render);
+        const aiNode* n = g.node(fmt::format("piece_{}", i));
+        ASSERT_TRUE(n);
+        size_t faces = 0, vertices = 0;
+        for (unsigned k = 0; k < n->mNumMeshes; ++k) {
+            const aiMesh* mesh = g.scene->mMeshes[n->mMeshes[k]];
+            ASSERT_TRUE(mesh->HasNormals());
+            faces += mesh->mNumFaces;
+            vertices += mesh->mNumVertices;
+            for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+                const aiVector3D& nv = mesh->mNormals[v];
+                EXPECT_NEAR(nv.Length(), 1.0, 1e-5);
+                aiString material;
+                g.scene->mMaterials[mesh->mMaterialIndex]->Get(AI_MATKEY_NAME, material);
+                if (std::string(material.C_Str()).find("outer") != std::string::npos)
+                    EXPECT_NEAR(std::max({std::abs(nv.x), std::abs(nv.y), std::abs(nv.z)}), 1.0, 1e-5);
+            }
+        }
+        EXPECT_EQ(faces, m.pieces[i].render->triangles.size());
+        EXPECT_LT(vertices, 3 * faces);  // indexed: the triangles share vertices
+    }
+    const auto node = find_program("node");
+    const auto modules = validator_modules();
+    if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
+    const std::string driver = std::string(SHATTER_SOURCE_DIR) + "/tests/pipeline/validate_gltf.js";
+    const ProcessResult r = run_process({*node, driver, *modules, dir.file("r.glb")});
+    ASSERT_TRUE(r.ok()) << r.describe() << "\n" << r.err;
+    std::istringstream summary(r.out);
+    std::string word;
+    int errors = -1, warnings = -1;
+    summary >> word >> errors >> word >> warnings;
+    EXPECT_EQ(errors, 0) << r.out;
 }
 
 }  // namespace

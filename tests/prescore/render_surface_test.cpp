@@ -1,5 +1,5 @@
-// Render surfaces: on a sphere of 5,120 triangles cut into 6 pieces, the pieces' render
-// surfaces follow the input (99% of its vertices within 0.05% of the diagonal, normals within
+// Render surfaces: on a sphere of 5,120 triangles cut into 6 pieces by prescore (which makes them
+// by default; none with render_surface = false), the pieces' render surfaces follow the input (99% of its vertices within 0.05% of the diagonal, normals within
 // 10 degrees on 95% of it), each is closed, none falls back to its tet surface, and two runs
 // give the same surfaces. The tet surfaces miss both by far (the test says by how much).
 #include <gtest/gtest.h>
@@ -89,9 +89,13 @@ Cut cut_sphere(const testing_support::TempDir& dir, std::optional<Length> hollow
     cut.input = load_mesh(mesh.path, 0.1);
     if (check_mesh(cut.input, false).volume < 0) orient_outward(cut.input);
     cut.diagonal = report.input.diagonal;
-    RenderSurfaceSettings rs;
-    rs.margin = 0.15 * cut.diagonal / report.resolution;
-    cut.surfaces = render_surfaces(cut.input, cut.model, rs);
+    // prescore made them (by default), from the surface it tetrahedralized: the input here.
+    EXPECT_EQ(report.surface.vertices, cut.input.vertices);
+    EXPECT_EQ(report.render_surfaces, cut.model.pieces.size());
+    for (const Piece& p : cut.model.pieces) {
+        EXPECT_TRUE(p.render);
+        if (p.render) cut.surfaces.push_back(*p.render);
+    }
     return cut;
 }
 
@@ -132,6 +136,22 @@ TEST(RenderSurface, HollowSphereKeepsItsCavityFacesAndFollowsTheInput) {
     for (const RenderSurface& s : cut.surfaces)
         for (FaceKind k : s.kinds) cavity += k == FaceKind::Cavity;
     EXPECT_GT(cavity, 0u);
+}
+
+TEST(RenderSurface, PrescoreMakesNoneWhenTheSettingIsOff) {
+    testing_support::TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write("sphere.obj", obj(icosphere(2)));
+    mesh.scale = 0.1;
+    PrescoreSettings settings;
+    settings.pieces = 3;
+    settings.resolution = 8;
+    settings.render_surface = false;
+    PrescoreReport report;
+    const Model m = prescore(mesh, settings, &report);
+    for (const Piece& p : m.pieces) EXPECT_FALSE(p.render);
+    EXPECT_EQ(report.render_surfaces, 0u);
+    EXPECT_NE(m.settings_json.find("\"render_surface\":false"), std::string::npos) << m.settings_json;
 }
 
 TEST(RenderSurface, TwoRunsGiveTheSameSurfaces) {

@@ -4,7 +4,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/model_io.h"
 #include "render/frame_renderer.h"
+#include "render/mesh_builder.h"
 #include "render/image_diff.h"
 #include "render/gl_context.h"
 #include "render/png_io.h"
@@ -58,6 +60,42 @@ TEST(FrameRenderer, MsaaAroundTheEdgesGivesTheAllMsaaFrameWithinALevel) {
         const DiffMetrics one = compare_images(edges, render_one(t, s, f), 1);
         s.msaa = 4;
         EXPECT_GT(one.pixels_over, 200u) << "frame " << f;  // measured: 959 and 1,164
+    }
+}
+
+// A piece with a render surface is drawn from it, indexed: three indices per triangle, a vertex
+// per surface vertex and kind that uses it, the surface's normals. On the v2 fixture (a cube: its
+// render surfaces are the cube's faces cut per piece, so they cover what the tet surfaces
+// cover), frames drawn from the render surfaces and from the tet surfaces agree but for the
+// triangulation's edge pixels.
+TEST(FrameRenderer, RenderSurfacesAreDrawnIndexedAndCoverWhatTheTetSurfacesCover) {
+    TestScene with;
+    with.model = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v2.model");
+    with.trajectory = test_trajectory(with.model, with.settings);
+    const RenderSettings s = small_render_settings();
+    for (uint32_t i = 0; i < with.model.pieces.size(); ++i) {
+        const Piece& p = with.model.pieces[i];
+        ASSERT_TRUE(p.render);
+        const IndexedVertices m = piece_mesh(p, i, s);
+        EXPECT_EQ(m.indices.size(), 3 * p.render->triangles.size());
+        EXPECT_LE(m.vertices.size(), 3 * p.render->vertices.size());
+        EXPECT_LT(m.vertices.size(), m.indices.size());
+        const RenderSurface& rs = *p.render;
+        for (size_t t = 0; t < rs.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const Vertex& v = m.vertices[m.indices[3 * t + size_t(k)]];
+                const Vec3& n = rs.normals[rs.triangles[t][size_t(k)]];
+                EXPECT_FLOAT_EQ(v.normal[0], float(n.x()));
+                EXPECT_FLOAT_EQ(v.normal[1], float(n.y()));
+                EXPECT_FLOAT_EQ(v.normal[2], float(n.z()));
+            }
+    }
+    TestScene without = with;
+    for (Piece& p : without.model.pieces) p.render.reset();
+    for (uint32_t f : {0u, 23u}) {
+        const DiffMetrics d = compare_images(render_one(with, s, f), render_one(without, s, f), 24);
+        EXPECT_LT(d.fraction_over, 0.01) << "frame " << f << ": " << d.pixels_over << " pixels over 24 levels";
+        ::testing::Test::RecordProperty("rmse_frame_" + std::to_string(f), std::to_string(d.rmse));
     }
 }
 
