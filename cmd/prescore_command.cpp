@@ -15,7 +15,6 @@
 #include "core/error.h"
 #include "core/model_io.h"
 #include "core/shot.h"
-#include "prescore/pieces_ply.h"
 #include "prescore/prescore.h"
 
 namespace shatter {
@@ -68,12 +67,10 @@ int run(const PrescoreFlags& flags) {
     const std::string out = flags.output.empty() ? default_output(flags.input) : flags.output;
     const std::filesystem::path out_path(out);
     if (out_path.has_parent_path()) make_directories(out_path.parent_path().string());
-    const std::string ply = (out_path.parent_path() / (out_path.stem().string() + ".pieces.ply")).string();
 
     PrescoreReport report;
     Model model = prescore_shot(shot, &report);
-    save_model(out, model);
-    write_file_atomic(ply, pieces_ply(model));
+    const std::string ply = save_prescore_outputs(model, out);
 
     size_t pairs = 0, parts = 0;
     for (size_t i = 0; i < model.constraints.size(); ++i)

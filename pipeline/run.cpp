@@ -26,7 +26,6 @@
 #include "pipeline/run_metrics.h"
 #include "pipeline/sheets.h"
 #include "pipeline/stage_cache.h"
-#include "prescore/pieces_ply.h"
 #include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/render.h"
@@ -335,8 +334,7 @@ private:
     void compute_prescore() {
         PrescoreReport report;
         const Model model = prescore_shot(shot_, &report);
-        save_model(file(".model"), model);
-        write_file_atomic(file(".pieces.ply"), pieces_ply(model));
+        save_prescore_outputs(model, file(".model"));  // NAME.model and NAME.pieces.ply
         spdlog::info("prescore: {} pieces, {} tets, {} constraints", model.pieces.size(), model.mesh.tets.size(),
                      model.constraints.size());
     }

@@ -10,17 +10,19 @@
 #include "core/atomic_file.h"
 #include "core/binary_io.h"
 #include "core/error.h"
+#include "core/model_io.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
+#include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
 #include "prescore/collision_parts.h"
 #include "prescore/constraint_reduction.h"
 #include "prescore/constraints.h"
 #include "prescore/hollow.h"
 #include "prescore/mass_properties.h"
-#include "meshio/mesh_load.h"
 #include "prescore/partition.h"
 #include "prescore/piece_surface.h"
+#include "prescore/pieces_ply.h"
 #include "prescore/render_surface.h"
 #include "prescore/repair.h"
 #include "prescore/tet_topology.h"
@@ -279,6 +281,14 @@ Model prescore_shot(const Shot& shot, PrescoreReport* report_out) {
     Model model = generate_model(*shot.generate);
     timer.lap("generate");
     return model;
+}
+
+std::string save_prescore_outputs(const Model& model, const std::string& model_path) {
+    const std::filesystem::path path(model_path);
+    const std::string ply = (path.parent_path() / (path.stem().string() + ".pieces.ply")).string();
+    save_model(model_path, model);
+    write_file_atomic(ply, pieces_ply(model));
+    return ply;
 }
 
 }  // namespace shatter

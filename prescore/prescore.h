@@ -49,4 +49,9 @@ Model prescore(const MeshSettings& mesh, const PrescoreSettings& settings, Presc
 // shot.prescore, report). Throws Error(BadInput) naming the shot when it has neither.
 Model prescore_shot(const Shot& shot, PrescoreReport* report);
 
+// The stage's files: the model at `model_path` and, beside it, STEM.pieces.ply (the pieces as one
+// coloured PLY for a quick look; prescore/pieces_ply.h), each written atomically. Returns the
+// PLY's path.
+std::string save_prescore_outputs(const Model& model, const std::string& model_path);
+
 }  // namespace shatter

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "prescore/mesh_check.h"
 #include "meshio/mesh_load.h"
+#include "prescore/mesh_check.h"
 #include "tests/fuzz/fuzz_support.h"
 
 namespace {

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "prescore/mesh_check.h"
 #include "meshio/mesh_load.h"
+#include "prescore/mesh_check.h"
 
 namespace shatter {
 namespace {

@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "prescore/mesh_check.h"
 #include "meshio/mesh_load.h"
+#include "prescore/mesh_check.h"
 #include "prescore/prescore.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"

@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "prescore/mesh_check.h"
 #include "meshio/mesh_load.h"
+#include "prescore/mesh_check.h"
 #include "prescore/tetrahedralize.h"
 
 namespace shatter {

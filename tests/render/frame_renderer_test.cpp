@@ -6,9 +6,9 @@
 
 #include "core/model_io.h"
 #include "render/frame_renderer.h"
-#include "render/mesh_builder.h"
-#include "render/image_diff.h"
 #include "render/gl_context.h"
+#include "render/image_diff.h"
+#include "render/mesh_builder.h"
 #include "render/png_io.h"
 #include "render/srgb_encode.h"
 #include "scenes/render_test_scene.h"
