@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/binary_io.h"
 #include "core/error.h"
+#include "core/isolated.h"
 #include "core/model_io.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
@@ -180,19 +181,40 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
     }
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
-    std::vector<RenderSurface> surfaces =
-        render_surfaces(cut, model, rs, cut.triangles.size() < surface.triangles.size() ? &surface : nullptr);
-    for (size_t p = 0; p < surfaces.size(); ++p) {
-        report.render_fell_back += surfaces[p].fell_back;
-        report.render_triangles += surfaces[p].triangles.size();
-        model.pieces[p].render = std::move(surfaces[p]);
+    // CGAL's corefinement in a child process (core/isolated.h): a crash or a cut past its
+    // deadline leaves the pieces their tet surfaces instead of ending prescore. The child sends
+    // the model back with its render surfaces (the model format carries them).
+    Model cut_model;
+    try {
+        const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6;
+        const std::string bytes = run_isolated(
+            [&] {
+                Model m = model;
+                std::vector<RenderSurface> found = render_surfaces(
+                    cut, m, rs, cut.triangles.size() < surface.triangles.size() ? &surface : nullptr);
+                for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
+                return encode_model(m);
+            },
+            deadline);
+        cut_model = decode_model(bytes, "render surfaces");
+    } catch (const IsolatedFailure& f) {
+        report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
+                            fmt::format("CGAL's corefinement {} ({}); [prescore] render_surface = false to say so",
+                                        f.timed_out ? "did not finish in time" : "crashed", f.what()));
+        return;
     }
-    report.render_surfaces = surfaces.size();
+    for (size_t p = 0; p < model.pieces.size() && p < cut_model.pieces.size(); ++p) {
+        if (!cut_model.pieces[p].render) continue;
+        report.render_fell_back += cut_model.pieces[p].render->fell_back;
+        report.render_triangles += cut_model.pieces[p].render->triangles.size();
+        model.pieces[p].render = std::move(cut_model.pieces[p].render);
+        ++report.render_surfaces;
+    }
     const std::string simplified =
         cut.triangles.size() < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
     spdlog::info("render surfaces: {} pieces cut from {} surface triangles{} (margin {:g} tet sizes, {:.4g} m) in "
                  "{:.2f} s: {} triangles, {} on their tet surface",
-                 surfaces.size(), cut.triangles.size(), simplified, kRenderSurfaceMargin, rs.margin,
+                 report.render_surfaces, cut.triangles.size(), simplified, kRenderSurfaceMargin, rs.margin,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  report.render_triangles, report.render_fell_back);
 }

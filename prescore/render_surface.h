@@ -35,8 +35,11 @@ namespace shatter {
 // and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
 // keep their tet surfaces. The simplification's own cost grows with the surface (not measured
 // apart; the demo's simplification and cut together take 1.1-1.2 s): a surface over
-// kRenderSurfaceSimplifyLimit is not cut either.
+// kRenderSurfaceSimplifyLimit is not cut either. The cut runs in a child process (core/isolated.h)
+// with a deadline of kRenderSurfaceSeconds plus the work's expected time: a crash inside CGAL or a
+// cut past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
+inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
 inline constexpr size_t kRenderSurfaceTriangles = 10000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified: none cut
