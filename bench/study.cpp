@@ -70,6 +70,9 @@ bool check_headlines(const Headlines& h) {
     check(h.plain_stable_cells > 0 && energized_there == h.plain_stable_cells,
           fmt::format("stability (mass ratio x alpha, alpha > 0): energized is stable in {} of the {} cells where plain "
                       "breaking is stable (all; other methods: {})", energized_there, h.plain_stable_cells, others));
+    check(h.direct_cells_heavy > 0 && h.direct_stable_heavy == h.direct_cells_heavy,
+          fmt::format("stability (mass ratio 100 and 1,000 x alpha 0 to 10): energized with direct joints is stable in "
+                      "{} of {} cells (all)", h.direct_stable_heavy, h.direct_cells_heavy));
     return ok;
 }
 

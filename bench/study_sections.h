@@ -36,6 +36,9 @@ struct Headlines {
     // ratio) is stable: how many there are, and in how many each energized method is stable too.
     size_t plain_stable_cells = 0;
     std::vector<std::pair<std::string, size_t>> stable_where_plain;  // (method, cells)
+    // mass x alpha map, mass ratios 100 and 1,000, alpha 0 to 10: cells where energized with direct
+    // joints (simulate/bullet_solver.h) is stable, of all such cells.
+    size_t direct_stable_heavy = 0, direct_cells_heavy = 0;
     // smallest: per shot, the largest deviation / tolerance of the shot as shipped and of the
     // chosen model (quick: the shipped one), against the finest model (<= 1 passes).
     struct Smallest {

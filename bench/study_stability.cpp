@@ -104,6 +104,12 @@ bool section_stability(const Options& opt, Headlines& h) {
                 cls[{m, {ratio, a}}] = cell.cls;
                 row(csv, "mass_alpha", m, "mass_ratio", ratio, "alpha", a, cell);
             }
+    for (double ratio : ratios)
+        for (double a : alphas)
+            if (ratio >= 100 && a <= 10) {
+                h.direct_cells_heavy++;
+                h.direct_stable_heavy += cls[{"energized+direct", {ratio, a}}] == Stability::Stable;
+            }
     // Plain breaking is energized at alpha = 0 (the map's first row).
     for (const std::string& m : ms2) h.stable_where_plain.push_back({m, 0});
     for (double ratio : ratios)
