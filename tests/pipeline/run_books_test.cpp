@@ -1,0 +1,35 @@
+// `shatter run` closes with the energy books: stored, alpha x stored, injected and their ratio.
+// The paper's beam (assets/beam.toml) solves its kicks for exact energy (exact_energy = true), so
+// what its breaks inject is alpha x what they stored: the ratio reads 1.000.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "pipeline/run.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+using testing_support::TempDir;
+
+TEST(RunBooks, TheClosingSummaryPrintsTheBooksAndTheirRatio) {
+    TempDir dir;
+    RunOptions o;
+    o.shot = SHATTER_SOURCE_DIR "/assets/beam.toml";
+    o.output_dir = dir.file("out");
+    o.stages = {Stage::Prescore, Stage::Simulate};
+    o.progress = false;
+    const RunResult r = run_shot(o);
+    ASSERT_EQ(r.exit_code, 0);
+    ASSERT_GT(r.summary["simulation"]["breaks"].get<size_t>(), 0u);
+    const std::string closing = format_run_summary(r);
+    const size_t at = closing.find("books:    stored ");
+    ASSERT_NE(at, std::string::npos) << closing;
+    const std::string line = closing.substr(at, closing.find('\n', at) - at);
+    EXPECT_NE(line.find("x alpha 1 = "), std::string::npos) << line;
+    EXPECT_NE(line.find("(1.000 x alpha x stored)"), std::string::npos) << line;
+}
+
+}  // namespace
+}  // namespace shatter
