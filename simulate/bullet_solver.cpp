@@ -222,30 +222,28 @@ btScalar PieceSolver::solve_joints_directly() {
                             ? double((c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm) / c.m_jacDiagABInv - jv)
                             : 0.0;
     }
-    {
-        // K^-1 r = C^-1 (r - J G^-1 J^T C^-1 r)
-        d.body_rhs.setZero();
-        for (int r = 0; r < n; ++r) {
-            const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-            const double wr = d.inv_cfm[size_t(r)] * d.residual[r];
-            if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-                for (int i = 0; i < 3; ++i)
-                    d.body_rhs[k + i] += wr * c.m_contactNormal1[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos1CrossNormal[i];
-            if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-                for (int i = 0; i < 3; ++i)
-                    d.body_rhs[k + i] += wr * c.m_contactNormal2[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos2CrossNormal[i];
-        }
-        const Eigen::VectorXd z = d.ldlt.solve(d.body_rhs);
-        d.correction.resize(n);
-        for (int r = 0; r < n; ++r) {
-            const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-            double jz = 0;
-            if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-                for (int i = 0; i < 3; ++i) jz += c.m_contactNormal1[i] * z[k + i] + c.m_relpos1CrossNormal[i] * z[k + 3 + i];
-            if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-                for (int i = 0; i < 3; ++i) jz += c.m_contactNormal2[i] * z[k + i] + c.m_relpos2CrossNormal[i] * z[k + 3 + i];
-            d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
-        }
+    // K^-1 r = C^-1 (r - J G^-1 J^T C^-1 r)
+    d.body_rhs.setZero();
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+        const double wr = d.inv_cfm[size_t(r)] * d.residual[r];
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
+            for (int i = 0; i < 3; ++i)
+                d.body_rhs[k + i] += wr * c.m_contactNormal1[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos1CrossNormal[i];
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
+            for (int i = 0; i < 3; ++i)
+                d.body_rhs[k + i] += wr * c.m_contactNormal2[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos2CrossNormal[i];
+    }
+    const Eigen::VectorXd z = d.ldlt.solve(d.body_rhs);
+    d.correction.resize(n);
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+        double jz = 0;
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
+            for (int i = 0; i < 3; ++i) jz += c.m_contactNormal1[i] * z[k + i] + c.m_relpos1CrossNormal[i] * z[k + 3 + i];
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
+            for (int i = 0; i < 3; ++i) jz += c.m_contactNormal2[i] * z[k + i] + c.m_relpos2CrossNormal[i] * z[k + 3 + i];
+        d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
     }
     btScalar largest = 0, most = 0;
     for (int r = 0; r < n; ++r) {
