@@ -86,6 +86,16 @@ double constraint_length(const Model& model, const Constraint& c) {
 }
 
 double stiffness_number(const MaterialSettings& m) { return m.youngs_modulus ? *m.youngs_modulus : m.stiffness; }
+const char* stiffness_number_key(const MaterialSettings& m) {
+    return m.youngs_modulus ? "youngs_modulus" : "stiffness";
+}
+const char* stiffness_number_unit(const MaterialSettings& m) { return m.youngs_modulus ? "Pa" : "N/m^3"; }
+void set_stiffness_number(MaterialSettings& m, double value) {
+    if (m.youngs_modulus)
+        m.youngs_modulus = value;
+    else
+        m.stiffness = value;
+}
 
 namespace {
 

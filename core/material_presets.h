@@ -53,8 +53,12 @@ double constraint_length(const Model& model, const Constraint& c);
 // k_c per unit of the material's stiffness number (youngs_modulus when set, else stiffness):
 // A_c / l_c or A_c. Throws Error(BadInput) when youngs_modulus is set and l_c is not positive.
 double stiffness_factor(const MaterialSettings& m, const Model& model, const Constraint& c);
-// The material's stiffness number: *youngs_modulus (Pa) when set, else stiffness (N/m^3).
+// The material's stiffness number: *youngs_modulus (Pa) when set, else stiffness (N/m^3); its
+// key in [material] and its unit, and setting it.
 double stiffness_number(const MaterialSettings& m);
+const char* stiffness_number_key(const MaterialSettings& m);   // "youngs_modulus" or "stiffness"
+const char* stiffness_number_unit(const MaterialSettings& m);  // "Pa" or "N/m^3"
+void set_stiffness_number(MaterialSettings& m, double value);
 // k_c, damping and strength of constraint c.
 ConstraintMaterial constraint_material(const MaterialSettings& m, const Model& model, const Constraint& c);
 

@@ -134,6 +134,22 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
     return residual;
 }
 
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// A row's Jacobian on one of its two bodies: (contactNormal1, relpos1CrossNormal) on A,
+// (contactNormal2, relpos2CrossNormal) on B.
+Vec6 row_jacobian(const btSolverConstraint& c, bool on_a) {
+    const btVector3& lin = on_a ? c.m_contactNormal1 : c.m_contactNormal2;
+    const btVector3& ang = on_a ? c.m_relpos1CrossNormal : c.m_relpos2CrossNormal;
+    Vec6 j;
+    j << lin[0], lin[1], lin[2], ang[0], ang[1], ang[2];
+    return j;
+}
+
+}  // namespace
+
 // A joint row's equation, as Bullet's row update reads it (solve_row): the row is satisfied when
 //   rhs - cfm l - (J dv) jacDiagABInv = 0,
 // rhs and cfm being pre-multiplied by jacDiagABInv = 1 / (J M^-1 J^T) of the row alone. Divided by
@@ -183,14 +199,8 @@ void PieceSolver::factor_body_space() {
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
         const double w = d.inv_cfm[size_t(r)];
-        // The row's Jacobian: (contactNormal1, relpos1CrossNormal) on A, (contactNormal2,
-        // relpos2CrossNormal) on B.
         const int at[2] = {d.body_index[size_t(row.m_solverBodyIdA)], d.body_index[size_t(row.m_solverBodyIdB)]};
-        double jac[2][6];
-        for (int i = 0; i < 3; ++i) {
-            jac[0][i] = row.m_contactNormal1[i], jac[0][3 + i] = row.m_relpos1CrossNormal[i];
-            jac[1][i] = row.m_contactNormal2[i], jac[1][3 + i] = row.m_relpos2CrossNormal[i];
-        }
+        const Vec6 jac[2] = {row_jacobian(row, true), row_jacobian(row, false)};
         for (int x = 0; x < 2; ++x)
             for (int y = 0; y < 2; ++y) {
                 if (at[x] < 0 || at[y] < 0) continue;
@@ -228,11 +238,9 @@ btScalar PieceSolver::solve_joints_directly() {
         const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
         const double wr = d.inv_cfm[size_t(r)] * d.residual[r];
         if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-            for (int i = 0; i < 3; ++i)
-                d.body_rhs[k + i] += wr * c.m_contactNormal1[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos1CrossNormal[i];
+            d.body_rhs.segment<6>(k) += wr * row_jacobian(c, true);
         if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-            for (int i = 0; i < 3; ++i)
-                d.body_rhs[k + i] += wr * c.m_contactNormal2[i], d.body_rhs[k + 3 + i] += wr * c.m_relpos2CrossNormal[i];
+            d.body_rhs.segment<6>(k) += wr * row_jacobian(c, false);
     }
     const Eigen::VectorXd z = d.ldlt.solve(d.body_rhs);
     d.correction.resize(n);
@@ -240,9 +248,9 @@ btScalar PieceSolver::solve_joints_directly() {
         const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
         double jz = 0;
         if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-            for (int i = 0; i < 3; ++i) jz += c.m_contactNormal1[i] * z[k + i] + c.m_relpos1CrossNormal[i] * z[k + 3 + i];
+            jz += row_jacobian(c, true).dot(z.segment<6>(k));
         if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-            for (int i = 0; i < 3; ++i) jz += c.m_contactNormal2[i] * z[k + i] + c.m_relpos2CrossNormal[i] * z[k + 3 + i];
+            jz += row_jacobian(c, false).dot(z.segment<6>(k));
         d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
     }
     btScalar largest = 0, most = 0;
@@ -250,10 +258,10 @@ btScalar PieceSolver::solve_joints_directly() {
         btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
         const btScalar delta = btScalar(d.correction[r]);
         c.m_appliedImpulse = btScalar(c.m_appliedImpulse) + delta;
-        m_tmpSolverBodyPool[c.m_solverBodyIdA].internalApplyImpulse(
-            c.m_contactNormal1 * m_tmpSolverBodyPool[c.m_solverBodyIdA].internalGetInvMass(), c.m_angularComponentA, delta);
-        m_tmpSolverBodyPool[c.m_solverBodyIdB].internalApplyImpulse(
-            c.m_contactNormal2 * m_tmpSolverBodyPool[c.m_solverBodyIdB].internalGetInvMass(), c.m_angularComponentB, delta);
+        btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+        btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+        a.internalApplyImpulse(c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
+        b.internalApplyImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
         if (c.m_jacDiagABInv != 0) largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
         if (tolerance_ > 0 && r < row_scale_.size()) most = btMax(most, btFabs(delta) * row_scale_[r]);
     }

@@ -61,9 +61,8 @@ void check_cfm(const BulletWorld& world, const Model& model, const SimulationInp
     const double k_min = least_stiffness(world, model, in, &c);
     if (k_min == 0) return;
     double w = 0;
-    const bool e = bool(in.material.youngs_modulus);
-    const char* key = e ? "youngs_modulus" : "stiffness";
-    const char* unit = e ? "Pa" : "N/m^3";
+    const char* key = stiffness_number_key(in.material);
+    const char* unit = stiffness_number_unit(in.material);
     throw_input_error(
         fmt::format("[material] {}", key),
         fmt::format("constraint {} (pieces {} and {}) would need CFM {:.3g} at the step h = {:.4g} s with {} "
@@ -214,14 +213,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                                             model, in, &first);
         if (need > 0) {
             const double stiffness = 1.05 * need;
-            const bool e = bool(in.material.youngs_modulus);
             spdlog::info("auto: {} {:.4g} -> {:.4g} {} (constraint {} would need CFM above {:g} at h = {:.4g} s; "
-                         "[material] stiffen = true)", e ? "youngs_modulus" : "stiffness", stiffness_number(in.material),
-                         stiffness, e ? "Pa" : "N/m^3", first, in.simulate.max_cfm, h);
-            if (e)
-                in.material.youngs_modulus = stiffness;
-            else
-                in.material.stiffness = stiffness;
+                         "[material] stiffen = true)", stiffness_number_key(in.material), stiffness_number(in.material),
+                         stiffness, stiffness_number_unit(in.material), first, in.simulate.max_cfm, h);
+            set_stiffness_number(in.material, stiffness);
         }
     }
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
