@@ -226,8 +226,8 @@ const std::vector<Method>& methods() {
         {"plain", "plain deletion (alpha = 0)"},
         {"bullet", "Bullet's per-row impulse threshold (alpha = 0)"},
         {"paper", "energized, the paper read literally (alpha E per body, paper magnitudes)"},
-        {"energized", "energized, our split (alpha E in all, exact energy)"},
-        {"opposed", "energized, momentum-conserving (opposed kicks)"},
+        {"energized", "energized, our split (alpha E in all, exact energy), the paper's directions"},
+        {"opposed", "energized, momentum-conserving (opposed kicks): the default method"},
         {"rate_limit", "energized + rate limit 0.05 s"},
         {"rollback", "energized + rollback"},
     };

@@ -83,6 +83,22 @@ const char* to_string(KickDirectionMode m) {
     return "?";
 }
 
+const char* to_string(EnergizeMethod m) {
+    switch (m) {
+        case EnergizeMethod::Exact: return "exact";
+        case EnergizeMethod::Paper: return "paper";
+    }
+    return "?";
+}
+
+void apply_energize_method(EnergizeMethod m, SimulateSettings& s) {
+    s.method = m;
+    const bool paper = m == EnergizeMethod::Paper;
+    s.energy_split = paper ? EnergySplitMode::PerBody : EnergySplitMode::Total;
+    s.directions = paper ? KickDirectionMode::Paper : KickDirectionMode::Opposed;
+    s.exact_energy = !paper;
+}
+
 const char* to_string(BreakCriterion c) {
     switch (c) {
         case BreakCriterion::Force: return "force";

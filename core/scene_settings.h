@@ -129,6 +129,12 @@ inline constexpr Limits kRestitutionLimits{0, 1, ""};
 
 enum class EnergySplitMode { Total, PerBody };
 enum class KickDirectionMode { Paper, Opposed, Force };
+// The energizing method: a name for the three keys energy_split, directions and exact_energy
+// (docs/physics.md section 4). "exact" (the default): the pair gains exactly alpha E in its own
+// frame, equal and opposite kicks, body a's along the paper's direction (momentum conserved;
+// directions = "opposed"); "paper": the
+// paper as written, alpha E per body with its magnitudes and its directions -(t x f).
+enum class EnergizeMethod { Exact, Paper };
 // When a constraint is overloaded: "force": the norm of its force exceeds strength x area
 // (docs/physics.md section 3); "bullet_impulse": Bullet's own per-row test, any world-axis row's
 // impulse in a step reaches strength x area x h (btTypedConstraint::setBreakingImpulseThreshold),
@@ -154,18 +160,21 @@ struct SimulateSettings {
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     JointSolve joints = JointSolve::Iterative;  // "iterative" or "direct" (simulate/bullet_solver.h)
+    EnergizeMethod method = EnergizeMethod::Exact;  // sets the next three (apply_energize_method)
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
     // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, never
     // into the partner (momentum-conserving)
-    KickDirectionMode directions = KickDirectionMode::Paper;
+    KickDirectionMode directions = KickDirectionMode::Opposed;
     double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
     bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
-    bool exact_energy = false;  // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E
+    bool exact_energy = true;   // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E
     uint64_t seed = 1;          // seed of the random kick directions
     double max_cfm = 0.5;       // refuse settings whose constraints would need a larger CFM (unit: 1)
     BreakCriterion break_criterion = BreakCriterion::Force;  // "force" (norm) or "bullet_impulse" (per row)
     InstabilityMode on_instability = InstabilityMode::Stop;  // "stop" or "clamp" (simulate/instability.h)
 };
+// Sets `method` and the three keys it names.
+void apply_energize_method(EnergizeMethod m, SimulateSettings& s);
 inline constexpr Limits kDurationLimits{1e-3, 3600, "s"};
 inline constexpr Limits kFpsLimits{1, 1000, "frames/s"};
 inline constexpr Limits kSubstepsLimits{1, 10000, "steps per frame"};
@@ -183,6 +192,7 @@ SceneSettings scene_from_json(const nlohmann::json& j, const std::string& source
 const char* to_string(ShapeKind k);
 const char* to_string(EnergySplitMode m);
 const char* to_string(KickDirectionMode m);
+const char* to_string(EnergizeMethod m);
 const char* to_string(BreakCriterion c);
 const char* to_string(InstabilityMode m);
 

@@ -189,22 +189,24 @@ void read_preset(TomlSection& s, Shot& shot) {
     apply_material_preset(*p, shot.material);
 }
 
-// The preset given in a later layer than `n` (`--set material.preset=...` over the shot file's
-// key), or null: the key is then the preset's to set.
-const toml::node* later_preset(TomlSection& s, const toml::node* n) {
-    const toml::node* p = s.node("preset");
+// The preset (`preset_key`: [material] preset, [simulate] method) given in a later layer than `n`
+// (`--set material.preset=...` over the shot file's key), or null: the key is then the preset's
+// to set.
+const toml::node* later_preset(TomlSection& s, const char* preset_key, const toml::node* n) {
+    const toml::node* p = s.node(preset_key);
     if (!p || !p->is_string() || p->as_string()->get() == "none" || layer(p) <= layer(n)) return nullptr;
     return p;
 }
 
 // A key a preset also sets: it overrides a preset given in the same layer (or an earlier one), and
 // a preset given in a later layer replaces it.
-Setting preset_overridable(Setting setting) {
-    setting.read = [inner = setting.read, key = setting.key](TomlSection& s, Shot& shot) {
+Setting preset_overridable(Setting setting, const char* preset_key = "preset") {
+    setting.read = [inner = setting.read, key = setting.key, preset_key](TomlSection& s, Shot& shot) {
         const toml::node* n = s.node(key.c_str());
         if (!n) return;
-        if (const toml::node* p = later_preset(s, n)) {
-            spdlog::info("material: {} of {} replaced by the preset ({})", key, layer_name(n), *p->source().path);
+        if (const toml::node* p = later_preset(s, preset_key, n)) {
+            spdlog::info("{} of {} replaced by the {} ({})", s.key_name(key.c_str()), layer_name(n), preset_key,
+                         *p->source().path);
             return;
         }
         inner(s, shot);
@@ -295,6 +297,32 @@ SettingsSection material_section() {
             {}};
 }
 
+namespace {
+
+// [simulate] method = "exact" | "paper": sets energy_split, directions and exact_energy, which
+// are read after it and override it (preset_overridable).
+Setting method() {
+    const std::vector<std::pair<const char*, EnergizeMethod>> names = {{"exact", EnergizeMethod::Exact},
+                                                                       {"paper", EnergizeMethod::Paper}};
+    Setting m = choice<EnergizeMethod>(
+                    "method", at(&Shot::simulate, &SimulateSettings::method), names,
+                    "how a break gives back alpha E (docs/physics.md section 4): \"exact\": the pair gains exactly "
+                    "alpha E in its own frame, equal and opposite kicks (energy_split = \"total\", directions = "
+                    "\"opposed\", exact_energy = true); \"paper\": the paper as written, "
+                    "alpha E per body with its magnitudes and directions (\"per_body\", \"paper\", false), for "
+                    "comparison. The three keys given beside it override it")
+                    .flag("--method")
+                    .json_unless_default();
+    m.read = [inner = m.read](TomlSection& s, Shot& shot) {
+        if (!s.node("method")) return;
+        inner(s, shot);
+        apply_energize_method(shot.simulate.method, shot.simulate);
+    };
+    return m;
+}
+
+}  // namespace
+
 SettingsSection simulate_section() {
     return {"simulate",
             {custom("duration", "s, or \"auto\"", "4", "0.001 to 3600, or \"auto\"",
@@ -324,29 +352,36 @@ SettingsSection simulate_section() {
                                 "them (docs/physics.md, \"Direct joints\")")
                  .flag("--joints")
                  .json_unless_default(),
-             choice<EnergySplitMode>("energy_split", at(&Shot::simulate, &SimulateSettings::energy_split),
-                                     {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}},
-                                     "\"total\": two bodies at rest gain alpha E together; \"per_body\": each gains "
-                                     "alpha E")
-                 .flag("--energy-split"),
-             choice<KickDirectionMode>("directions", at(&Shot::simulate, &SimulateSettings::directions),
-                                       {{"paper", KickDirectionMode::Paper},
-                                        {"opposed", KickDirectionMode::Opposed},
-                                        {"force", KickDirectionMode::Force}},
-                                       "kick directions: \"paper\": -(t x f) per body; \"opposed\": "
-                                       "momentum-conserving; \"force\": equal and opposite along the joint's load, never "
-                                       "into the partner (momentum-conserving; docs/physics.md section 4)")
-                 .flag("--directions"),
+             method(),
+             preset_overridable(
+                 choice<EnergySplitMode>("energy_split", at(&Shot::simulate, &SimulateSettings::energy_split),
+                                         {{"total", EnergySplitMode::Total}, {"per_body", EnergySplitMode::PerBody}},
+                                         "\"total\": two bodies at rest gain alpha E together; \"per_body\": each gains "
+                                         "alpha E (set by method)")
+                     .flag("--energy-split"),
+                 "method"),
+             preset_overridable(
+                 choice<KickDirectionMode>("directions", at(&Shot::simulate, &SimulateSettings::directions),
+                                           {{"paper", KickDirectionMode::Paper},
+                                            {"opposed", KickDirectionMode::Opposed},
+                                            {"force", KickDirectionMode::Force}},
+                                           "kick directions: \"paper\": -(t x f) per body; \"opposed\": "
+                                           "momentum-conserving; \"force\": equal and opposite along the joint's load, "
+                                           "never into the partner (momentum-conserving; docs/physics.md section 4; set "
+                                           "by method)")
+                     .flag("--directions"),
+                 "method"),
              number("rate_limit", "s", at(&Shot::simulate, &SimulateSettings::rate_limit), kRateLimitLimits,
                     "least time between two breaks of the object (the paper's chain: 0.3); 0: off")
                  .flag("--rate-limit"),
              boolean("rollback", at(&Shot::simulate, &SimulateSettings::rollback),
                      "re-run a step whose breaks were found, without the broken constraints")
                  .flag("--rollback", FlagKind::SetsTrue),
-             boolean("exact_energy", at(&Shot::simulate, &SimulateSettings::exact_energy),
-                     "solve the kick impulses for the bodies' motion so that the gained kinetic energy is exactly "
-                     "alpha E")
-                 .flag("--exact-energy", FlagKind::SetsTrue),
+             preset_overridable(boolean("exact_energy", at(&Shot::simulate, &SimulateSettings::exact_energy),
+                                        "solve the kick impulses for the bodies' motion so that the gained kinetic "
+                                        "energy is exactly alpha E in the pair's frame (set by method)")
+                                    .flag("--exact-energy", FlagKind::SetsTrue),
+                                "method"),
              seed("seed", at(&Shot::simulate, &SimulateSettings::seed), "seed of the random kick directions").flag("--seed"),
              number("max_cfm", "1", at(&Shot::simulate, &SimulateSettings::max_cfm), kMaxCfmLimits,
                     "refuse settings whose constraints would need a larger constraint-force mixing"),

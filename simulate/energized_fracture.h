@@ -42,10 +42,10 @@
 //   A static or kinematic body takes nothing; a dynamic body joined to one takes the whole
 //   alpha E (both splits).
 // Directions:
-//   Directions::Paper (default): each body its own i_b as above. In a bending break both bodies
+//   Directions::Paper: each body its own i_b as above. In a bending break both bodies
 //     can be kicked the same way, so linear momentum is not conserved in general.
-//   Directions::Opposed (momentum-conserving variant): body a takes i_a, body b takes -i_a, with
-//     the equal magnitudes of Split::Total. Equal and opposite impulses at one point change
+//   Directions::Opposed (momentum-conserving; the shots' default method, "exact"): body a takes
+//     i_a, body b takes -i_a, with the equal magnitudes of Split::Total. Equal and opposite impulses at one point change
 //     neither linear nor angular momentum.
 //   Directions::Force (momentum-conserving): along the line of the force the constraint carried,
 //     each body away from the other: body b along +-f_b/|f_b|, the sign making it point away from

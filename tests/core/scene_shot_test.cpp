@@ -410,11 +410,13 @@ TEST(SceneSettings, MalformedSceneJsonIsRefusedNamingTheSourceAndTheField) {
 
 TEST(SceneSettings, OtherSectionsWriteEveryFieldWithEnumsAsStrings) {
     SimulateSettings sim;
-    sim.energy_split = EnergySplitMode::PerBody;
-    const std::string s = to_json(sim).dump();
-    EXPECT_EQ(s, R"({"duration":4.0,"fps":30.0,"substeps":8,"iterations":20,"energy_split":"per_body",)"
-                 R"("directions":"paper","rate_limit":0.0,"rollback":false,"exact_energy":false,"seed":1,)"
-                 R"("max_cfm":0.5})");
+    EXPECT_EQ(to_json(sim).dump(), R"({"duration":4.0,"fps":30.0,"substeps":8,"iterations":20,"energy_split":"total",)"
+                                   R"("directions":"opposed","rate_limit":0.0,"rollback":false,"exact_energy":true,)"
+                                   R"("seed":1,"max_cfm":0.5})");
+    apply_energize_method(EnergizeMethod::Paper, sim);
+    EXPECT_EQ(to_json(sim).dump(), R"({"duration":4.0,"fps":30.0,"substeps":8,"iterations":20,"method":"paper",)"
+                                   R"("energy_split":"per_body","directions":"paper","rate_limit":0.0,"rollback":false,)"
+                                   R"("exact_energy":false,"seed":1,"max_cfm":0.5})");
     MaterialSettings mat;
     EXPECT_EQ(to_json(mat).dump(), R"({"density":null,"stiffness":10000000000.0,"damping":0.0,"strength":1000000.0,)"
                                    R"("alpha":1.0,"friction":0.5,"restitution":0.1})");
