@@ -42,6 +42,7 @@ public:
     JsonObject(const nlohmann::json& j, std::string source, std::string path);
 
     const nlohmann::json& at(const char* key);  // the value of a key that must be there
+    bool has(const char* key) const { return j_.contains(key); }
     double number(const char* key);
     uint64_t whole(const char* key, uint64_t max);  // a whole number from 0 to max
     bool boolean(const char* key);
@@ -118,11 +119,15 @@ struct BasicSetting {
         in_shot = false;
         return *this;
     }
-    // In the JSON only when not the default.
+    // In the JSON only when not the default; read back as the default when absent.
     BasicSetting& json_unless_default() {
         write = [w = write, d = is_default](const Root& s, nlohmann::ordered_json& j) {
             if (!d(s)) w(s, j);
         };
+        if (read_json)
+            read_json = [r = read_json, k = key](JsonObject& o, Root& root) {
+                if (o.has(k.c_str())) r(o, root);
+            };
         return *this;
     }
 };

@@ -470,6 +470,26 @@ TEST(SceneSettings, ArrayEntriesWriteAndReadBackTheKeysOfTheirTables) {
     }
 }
 
+// A key added to an entry's table with .json_unless_default() keeps the bytes of the files written
+// before it, and those files read back with its default.
+TEST(SceneSettings, AnEntryKeyWrittenUnlessDefaultReadsBackWhenAbsent) {
+    std::vector<BasicSetting<ColliderSettings>> table = collider_settings();
+    for (auto& setting : table)
+        if (setting.key == "radius") setting.json_unless_default();
+    std::vector<ColliderSettings> colliders(2);
+    colliders[1].shape.kind = ShapeKind::Sphere;
+    colliders[1].shape.radius = 0.25;
+    const nlohmann::ordered_json written = entries_json(table, colliders);
+    EXPECT_FALSE(written[0].contains("radius"));
+    EXPECT_EQ(written[1]["radius"], 0.25);
+    nlohmann::json parent = {{"colliders", nlohmann::json::parse(written.dump())}};
+    JsonObject o(parent, "t.traj", "scene");
+    const std::vector<ColliderSettings> back = entries_from_json(table, o, "colliders");
+    EXPECT_EQ(back[0].shape.radius, ColliderSettings{}.shape.radius);
+    EXPECT_EQ(back[1].shape.radius, 0.25);
+    EXPECT_EQ(entries_json(table, back).dump(), written.dump());
+}
+
 // A kinematic body's mesh and mesh_scale are in its JSON (its shape written as a collider's) but
 // are not keys of the shot file nor of its docs table.
 TEST(SceneShot, AKinematicBodysMeshKeysAreInItsJsonOnly) {
