@@ -3,11 +3,15 @@
 // help, and fills the default and range columns from them.
 //
 //   at(&Shot::material, &MaterialSettings::alpha)    the field a setting reads into
-//   number / whole / seed / boolean / choice / optional_number / vec3 / linear_colour / custom
+//   number / whole / seed / boolean / choice / optional_number / vec3 / text / key_frames /
+//   linear_colour / custom
 // A builder's Root is the Shot for a section's table, an entry's struct for an array of tables
-// (number<ColliderSettings>(...)).
+// (number<ColliderSettings>(...)). The builders but optional_number and custom also read their
+// key back from the settings JSON (read_json).
 #pragma once
 
+#include <charconv>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -63,13 +67,24 @@ template <class Root = Shot, class Get>
 BasicSetting<Root> number(const char* key, const char* unit, Get get, Limits limits, const char* help) {
     BasicSetting<Root> s{key, unit, short_number(get(defaults<Root>())), range_of(limits), help, {}, {}};
     s.read = [key, get, limits](TomlSection& t, Root& shot) { t.number(key, get(shot), limits); };
+    s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.number(key); };
     return with_value_json(s, key, get);
+}
+
+// Reads a whole number of the field's type back from the JSON.
+template <class Root, class Get>
+void whole_json(BasicSetting<Root>& s, const char* key, Get get) {
+    s.read_json = [key, get](JsonObject& o, Root& root) {
+        using T = std::remove_reference_t<decltype(get(root))>;
+        get(root) = static_cast<T>(o.whole(key, std::numeric_limits<T>::max()));
+    };
 }
 
 template <class Root = Shot, class Get>
 BasicSetting<Root> whole(const char* key, const char* unit, Get get, Limits limits, const char* help) {
     BasicSetting<Root> s{key, unit, std::to_string(get(defaults<Root>())), range_of(limits), help, {}, {}};
     s.read = [key, get, limits](TomlSection& t, Root& shot) { t.integer(key, get(shot), limits); };
+    whole_json(s, key, get);
     return with_value_json(s, key, get);
 }
 
@@ -77,6 +92,7 @@ template <class Root = Shot, class Get>
 BasicSetting<Root> seed(const char* key, Get get, const char* help) {
     BasicSetting<Root> s{key, "", std::to_string(get(defaults<Root>())), ">= 0", help, {}, {}};
     s.read = [key, get](TomlSection& t, Root& shot) { t.integer(key, get(shot)); };
+    whole_json(s, key, get);
     return with_value_json(s, key, get);
 }
 
@@ -84,6 +100,16 @@ template <class Root = Shot, class Get>
 BasicSetting<Root> boolean(const char* key, Get get, const char* help) {
     BasicSetting<Root> s{key, "", get(defaults<Root>()) ? "true" : "false", "true, false", help, {}, {}};
     s.read = [key, get](TomlSection& t, Root& shot) { t.boolean(key, get(shot)); };
+    s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.boolean(key); };
+    return with_value_json(s, key, get);
+}
+
+// A string (a name, a file).
+template <class Root = Shot, class Get>
+BasicSetting<Root> text(const char* key, Get get, const char* help) {
+    BasicSetting<Root> s{key, "", fmt::format("\"{}\"", get(defaults<Root>())), "", help, {}, {}};
+    s.read = [key, get](TomlSection& t, Root& root) { t.text(key, get(root)); };
+    s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.text(key); };
     return with_value_json(s, key, get);
 }
 
@@ -116,6 +142,17 @@ BasicSetting<Root> choice(const char* key, Get get, std::vector<std::pair<const 
     s.write = [key, get, names](const Root& shot, nlohmann::ordered_json& j) {
         for (const auto& [name, value] : names)
             if (value == get(const_cast<Root&>(shot))) j[key] = name;
+    };
+    std::string alternatives = plain.front();  // "box, sphere, plane or mesh"
+    for (size_t i = 1; i < plain.size(); ++i) alternatives += (i + 1 < plain.size() ? ", " : " or ") + plain[i];
+    s.read_json = [key, get, names, alternatives](JsonObject& o, Root& root) {
+        const std::string text = o.text(key);
+        for (const auto& [name, value] : names)
+            if (text == name) {
+                get(root) = value;
+                return;
+            }
+        o.fail(o.name(key), fmt::format("= \"{}\" is not {}", text, alternatives));
     };
     s.is_default = [get](const Root& shot) { return get(const_cast<Root&>(shot)) == get(defaults<Root>()); };
     return s;
@@ -162,6 +199,7 @@ BasicSetting<Root> vec3(const char* key, const char* unit, Get get, Limits limit
         const Vec3& v = get(const_cast<Root&>(shot));
         j[key] = nlohmann::ordered_json::array({v.x(), v.y(), v.z()});
     };
+    s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.vec3(key); };
     return s;
 }
 
@@ -178,6 +216,25 @@ BasicSetting<Root> custom(const char* key, const char* unit, const char* def, co
     return s;
 }
 
+// keys = [[t, x, y, z], ...] (read_keys, core/shot_scene.cpp); the JSON has [] for none.
+template <class Root>
+BasicSetting<Root> key_frames(std::vector<KeyFrame> Root::*member, const char* unit, const char* def,
+                              const char* range, const char* help) {
+    BasicSetting<Root> s{"keys", unit, def, range, help, {}, {}};
+    s.read = [member](TomlSection& t, Root& root) { read_keys(t, root.*member); };
+    s.write = [member](const Root& root, nlohmann::ordered_json& j) { j["keys"] = keys_json(root.*member); };
+    s.read_json = [member](JsonObject& o, Root& root) { root.*member = keys_from_json(o, "keys"); };
+    return s;
+}
+
+// A float as the shortest decimal that reads back as the same float (0.6f is written 0.6).
+inline double short_float(float f) {
+    const std::string text = fmt::format("{}", f);
+    double d = f;
+    std::from_chars(text.data(), text.data() + text.size(), d);
+    return d;
+}
+
 // A colour in linear RGB, [r, g, b] each 0 to 1 (colliders and kinematic bodies).
 template <class Root>
 BasicSetting<Root> linear_colour(std::array<float, 3> Root::*member, const char* help) {
@@ -190,6 +247,11 @@ BasicSetting<Root> linear_colour(std::array<float, 3> Root::*member, const char*
         if (!read_numbers(t, "colour", c.data(), 3, Limits{0, 1, "(linear RGB)"}, "[0.8, 0.2, 0.1]")) return;
         root.*member = {static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())};
     };
+    s.write = [member](const Root& root, nlohmann::ordered_json& j) {
+        const std::array<float, 3>& c = root.*member;
+        j["colour"] = nlohmann::ordered_json::array({short_float(c[0]), short_float(c[1]), short_float(c[2])});
+    };
+    s.read_json = [member](JsonObject& o, Root& root) { root.*member = o.colour("colour"); };
     return s;
 }
 

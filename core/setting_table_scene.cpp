@@ -1,5 +1,6 @@
 // The [scene], [object], [material] and [simulate] tables (core/setting_table.h): what simulate
-// reads. The arrays of tables of [scene] and [object] are read by core/shot_scene.cpp.
+// reads, and the tables of one entry of the arrays of tables of [scene] and [object]
+// (core/shot_scene.cpp reads the entries and adds the checks that join keys).
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -45,8 +46,7 @@ std::vector<BasicSetting<Root>> surface_settings() {
 
 template <class Root>
 BasicSetting<Root> name_setting() {
-    return custom<Root>("name", "", "\"\"", "", "a name for messages and render",
-                        [](TomlSection& s, Root& r) { s.text("name", r.name); });
+    return text<Root>("name", at(&Root::name), "a name for messages and render");
 }
 
 template <class Root>
@@ -75,9 +75,9 @@ const std::vector<BasicSetting<ColliderSettings>>& collider_settings() {
           vec3<C>("size", "m", at(&C::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
                   "box: full extents along its own axes"),
           number<C>("radius", "m", at(&C::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius"),
-          custom<C>("mesh", "", "(required for mesh)", "",
-                    "mesh: the mesh file, relative to the shot file's folder",
-                    [](TomlSection& s, C& c) { s.text("mesh", c.shape.mesh); }),
+          text<C>("mesh", at(&C::shape, &ShapeSettings::mesh),
+                  "mesh: the mesh file, relative to the shot file's folder")
+              .shows("(required for mesh)"),
           number<C>("mesh_scale", "m per mesh unit", at(&C::shape, &ShapeSettings::mesh_scale), kScaleLimits,
                     "mesh: multiplies every coordinate")},
          pose_settings<C>(),
@@ -94,14 +94,17 @@ const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings() {
                                {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}}, "the body's shape"),
           vec3<K>("size", "m", at(&K::shape, &ShapeSettings::size), kSizeLimits, "[1, 0.1, 1]",
                   "box: full extents along its own axes"),
-          number<K>("radius", "m", at(&K::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius")},
+          number<K>("radius", "m", at(&K::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius"),
+          // The settings JSON writes the body's shape as a collider's: with these two, which the
+          // shot file does not have.
+          text<K>("mesh", at(&K::shape, &ShapeSettings::mesh), "").json_only(),
+          number<K>("mesh_scale", "", at(&K::shape, &ShapeSettings::mesh_scale), kScaleLimits, "").json_only()},
          pose_settings<K>(),
          {vec3<K>("velocity", "m/s", at(&K::velocity), kVelocityLimits, "[1, 0, 0]",
                   "constant velocity: the position at time t is position + velocity t"),
-          custom<K>("keys", "s, m", "(none)", "t 0 to 3600, strictly increasing; x, y, z -1e6 to 1e6",
-                    "`[[t, x, y, z], ...]`: positions at times, linear in between, the first held before and the "
-                    "last after; replaces `position` and `velocity`",
-                    [](TomlSection& s, K& k) { read_keys(s, k.keys); })},
+          key_frames<K>(&K::keys, "s, m", "(none)", "t 0 to 3600, strictly increasing; x, y, z -1e6 to 1e6",
+                        "`[[t, x, y, z], ...]`: positions at times, linear in between, the first held before and "
+                        "the last after; replaces `position` and `velocity`")},
          surface_settings<K>(),
          {linear_colour<K>(&K::colour, "colour in render")}});
     return settings;
@@ -117,9 +120,8 @@ const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings() {
         boolean<D>("fixed", at(&D::fixed), "true: never moves"),
         vec3<D>("velocity", "m/s", at(&D::velocity), kVelocityLimits, "[0.05, 0, 0]",
                 "constant velocity (not with keys)"),
-        custom<D>("keys", "[s, m, m, m]", "none", "times increasing",
-                  "offsets from the start position at times, linear between, held after the last",
-                  [](TomlSection& s, D& d) { read_keys(s, d.keys); })};
+        key_frames<D>(&D::keys, "[s, m, m, m]", "none", "times increasing",
+                      "offsets from the start position at times, linear between, held after the last")};
     return settings;
 }
 
@@ -140,7 +142,14 @@ SettingsSection scene_section() {
                     at(&Shot::scene, &SceneSettings::ground_surface, &SurfaceSettings::restitution), kRestitutionLimits,
                     "bounciness of the ground")},
             [](TomlSection& s, Shot& shot) { read_scene_arrays(s, shot.scene, s.file()); },
-            [](const Shot& shot, ojson& j) { put_scene_arrays(shot.scene, j); }};
+            [](const Shot& shot, ojson& j) {
+                j["colliders"] = entries_json(collider_settings(), shot.scene.colliders);
+                j["kinematic"] = entries_json(kinematic_settings(), shot.scene.kinematic);
+            },
+            [](JsonObject& o, Shot& shot) {
+                shot.scene.colliders = entries_from_json(collider_settings(), o, "colliders");
+                shot.scene.kinematic = entries_from_json(kinematic_settings(), o, "kinematic");
+            }};
 }
 
 SettingsSection object_section() {
@@ -160,7 +169,7 @@ SettingsSection object_section() {
                   kAngularVelocityLimits, "[0, 3.14, 0]",
                   "initial angular velocity about the object's centre of mass")},
             [](TomlSection& s, Shot& shot) { read_object_driven(s, shot.object); },
-            [](const Shot& shot, ojson& j) { put_object_driven(shot.object, j); }};
+            [](const Shot& shot, ojson& j) { j["driven"] = entries_json(driven_settings(), shot.object.driven); }};
 }
 
 namespace {

@@ -1,8 +1,9 @@
 // The shot file's arrays of tables: [[scene.colliders]], [[scene.kinematic]] and
-// [[object.driven]] (docs/shot.md); the scalar keys of [scene], [object], [material] and
-// [simulate] are declared in core/setting_table_scene.cpp. Every key is checked against its
-// limits where it is read; each entry of an array of tables is read as its own section, named
-// "scene.colliders[2]" (0-based), so that an unknown key there is an error with file:line.
+// [[object.driven]] (docs/shot.md). The keys of an entry are declared by its table
+// (collider_settings() ..., core/setting_table_scene.cpp); this file reads the entries and adds
+// the checks that join keys. Every key is checked against its limits where it is read; each
+// entry of an array of tables is read as its own section, named "scene.colliders[2]"
+// (0-based), so that an unknown key there is an error with file:line.
 #include <filesystem>
 #include <utility>
 
@@ -76,7 +77,7 @@ void check_shape(TomlSection& s, ShapeSettings& shape, const std::string& shot_p
 }
 
 void read_collider(TomlSection& s, ColliderSettings& c, const std::string& shot_path) {
-    for (const auto& setting : collider_settings()) setting.read(s, c);
+    read_entry(collider_settings(), s, c);
     check_shape(s, c.shape, shot_path, false);
     s.finish();
 }
@@ -111,10 +112,31 @@ void read_keys(TomlSection& s, std::vector<KeyFrame>& keys) {
     }
 }
 
+nlohmann::ordered_json keys_json(const std::vector<KeyFrame>& keys) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const KeyFrame& f : keys) out.push_back({f.time, f.position.x(), f.position.y(), f.position.z()});
+    return out;
+}
+
+std::vector<KeyFrame> keys_from_json(JsonObject& o, const char* key) {
+    const nlohmann::json& a = o.array(key);
+    std::vector<KeyFrame> keys;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const std::string what = fmt::format("{}[{}]", o.name(key), i);
+        if (!a[i].is_array() || a[i].size() != 4) o.fail(what, "must be an array [t, x, y, z]");
+        KeyFrame f;
+        f.time = o.number_value(a[i][0], what);
+        for (int c = 0; c < 3; ++c) f.position[c] = o.number_value(a[i][c + 1], what);
+        if (!keys.empty() && !(f.time > keys.back().time)) o.fail(what, "has a time not after the key before it");
+        keys.push_back(f);
+    }
+    return keys;
+}
+
 namespace {
 
 void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& shot_path) {
-    for (const auto& setting : kinematic_settings()) setting.read(s, k);
+    read_entry(kinematic_settings(), s, k);
     check_shape(s, k.shape, shot_path, true);
     if (!k.keys.empty()) {
         const char* clash = s.node("velocity") ? "velocity" : s.node("position") ? "position" : nullptr;
@@ -128,7 +150,7 @@ void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& sho
 
 // [[object.driven]]: a piece the scene moves (kinematic) or holds (fixed = true).
 void read_drive(TomlSection& s, PieceDriveSettings& d, const std::string&) {
-    for (const auto& setting : driven_settings()) setting.read(s, d);
+    read_entry(driven_settings(), s, d);
     const bool moving = s.node("velocity");
     if (!d.keys.empty() && moving)
         s.fail(s.node("keys"), fmt::format("{} and {} are both given", s.key_name("keys"), s.key_name("velocity")),

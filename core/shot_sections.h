@@ -21,14 +21,14 @@ inline constexpr Limits kAngularVelocityLimits{-1e4, 1e4, "rad/s"};
 // [[scene.colliders]] and [[scene.kinematic]] (core/shot_scene.cpp); mesh files are taken
 // relative to `shot_path`'s folder.
 void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path);
-// keys = [[t, x, y, z], ...] of a kinematic body or a driven piece (core/shot_scene.cpp).
+// keys = [[t, x, y, z], ...] of a kinematic body or a driven piece (core/shot_scene.cpp), its
+// JSON (the same arrays; [] for none) and the JSON read back (times strictly increasing).
 void read_keys(TomlSection& s, std::vector<KeyFrame>& keys);
+nlohmann::ordered_json keys_json(const std::vector<KeyFrame>& keys);
+class JsonObject;
+std::vector<KeyFrame> keys_from_json(JsonObject& o, const char* key);
 // [[object.driven]] (core/shot_scene.cpp).
 void read_object_driven(TomlSection& s, ObjectSettings& object);
-// Their JSON, after the section's keys: "colliders" and "kinematic", "driven"
-// (core/scene_settings.cpp).
-void put_scene_arrays(const SceneSettings& scene, nlohmann::ordered_json& j);
-void put_object_driven(const ObjectSettings& object, nlohmann::ordered_json& j);
 // An array of `n` numbers under `key`, each within `limits`; `example` is a valid value for the
 // fix (core/shot_scene.cpp). False when the key is absent.
 bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const Limits& limits, const char* example);

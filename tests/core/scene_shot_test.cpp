@@ -1,11 +1,13 @@
 // The shot file's [scene], [[scene.colliders]], [[scene.kinematic]], [object], [material] and
 // [simulate] sections: every key read, every bad value refused with file:line, key, value and
-// range; the scene settings' JSON round trip; rotations and kinematic motion against hand values.
+// range; the scene settings' JSON round trip, by the tables of the arrays' entries too;
+// rotations and kinematic motion against hand values.
 #include <gtest/gtest.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/scene_settings.h"
+#include "core/setting_table.h"
 #include "core/shot.h"
 #include "support/shot_error.h"
 #include "support/temp_dir.h"
@@ -379,16 +381,19 @@ TEST(SceneSettings, SceneJsonRoundTripsExactly) {
     EXPECT_NE(text.find("\"colour\":[0.1,0.2,0.3]"), std::string::npos) << text;
 }
 
+// The message of scene_from_json on `j`.
+std::string scene_json_error(const nlohmann::json& j) {
+    try {
+        scene_from_json(j, "t.traj");
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        return e.what();
+    }
+    return "no error";
+}
+
 TEST(SceneSettings, MalformedSceneJsonIsRefusedNamingTheSourceAndTheField) {
-    auto error = [](nlohmann::json j) -> std::string {
-        try {
-            scene_from_json(j, "t.traj");
-        } catch (const Error& e) {
-            EXPECT_EQ(e.code(), ExitCode::BadInput);
-            return e.what();
-        }
-        return "no error";
-    };
+    auto error = scene_json_error;
     nlohmann::json good = nlohmann::json::parse(to_json(busy_scene()).dump());
     nlohmann::json j = good;
     j.erase("gravity");
@@ -406,6 +411,92 @@ TEST(SceneSettings, MalformedSceneJsonIsRefusedNamingTheSourceAndTheField) {
     j["kinematic"][0]["shape"] = "plane";
     EXPECT_NE(error(j).find("box or sphere"), std::string::npos) << error(j);
     EXPECT_NE(error(nlohmann::json::array()).find("scene is not a JSON object"), std::string::npos);
+}
+
+template <class Root>
+std::vector<std::string> table_keys(const std::vector<BasicSetting<Root>>& table) {
+    std::vector<std::string> keys;
+    for (const BasicSetting<Root>& s : table) keys.push_back(s.key);
+    return keys;
+}
+
+std::vector<std::string> json_keys(const nlohmann::ordered_json& j) {
+    std::vector<std::string> keys;
+    for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+    return keys;
+}
+
+// The table of an entry is its one declaration: the entry's JSON has the table's keys in table
+// order, and reading it back needs every one of them.
+TEST(SceneSettings, ArrayEntriesWriteAndReadBackTheKeysOfTheirTables) {
+    const nlohmann::ordered_json scene = to_json(busy_scene());
+    EXPECT_EQ(json_keys(scene["colliders"][0]), table_keys(collider_settings()));
+    EXPECT_EQ(json_keys(scene["kinematic"][0]), table_keys(kinematic_settings()));
+    for (const auto& setting : collider_settings()) {
+        nlohmann::json j = nlohmann::json::parse(scene.dump());
+        j["colliders"][2].erase(setting.key);
+        EXPECT_NE(scene_json_error(j).find("scene.colliders[2]." + setting.key + " is missing"), std::string::npos)
+            << scene_json_error(j);
+    }
+    for (const auto& setting : kinematic_settings()) {
+        nlohmann::json j = nlohmann::json::parse(scene.dump());
+        j["kinematic"][1].erase(setting.key);
+        EXPECT_NE(scene_json_error(j).find("scene.kinematic[1]." + setting.key + " is missing"), std::string::npos)
+            << scene_json_error(j);
+    }
+
+    ObjectSettings object;
+    object.driven.resize(2);
+    object.driven[0].piece = 3;
+    object.driven[0].velocity = Vec3(0.5, 0, 0);
+    object.driven[1].piece = 4;
+    object.driven[1].keys = {{0, Vec3(0, 1, 0)}, {1.5, Vec3(0, 2, 0.25)}};
+    const nlohmann::ordered_json driven = to_json(object)["driven"];
+    EXPECT_EQ(json_keys(driven[0]), table_keys(driven_settings()));
+    nlohmann::json parent = {{"driven", nlohmann::json::parse(driven.dump())}};
+    JsonObject o(parent, "t.traj", "object");
+    const std::vector<PieceDriveSettings> back = entries_from_json(driven_settings(), o, "driven");
+    EXPECT_EQ(entries_json(driven_settings(), back).dump(), driven.dump());
+    EXPECT_EQ(back[1].keys[1].position, Vec3(0, 2, 0.25));
+    parent["driven"][0]["piece"] = -1;
+    JsonObject bad(parent, "t.traj", "object");
+    try {
+        entries_from_json(driven_settings(), bad, "driven");
+        ADD_FAILURE() << "a negative piece was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("object.driven[0].piece must be a whole number from 0 to 4294967295"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// A key added to an entry's table with .json_unless_default() keeps the bytes of the files written
+// before it, and those files read back with its default.
+TEST(SceneSettings, AnEntryKeyWrittenUnlessDefaultReadsBackWhenAbsent) {
+    std::vector<BasicSetting<ColliderSettings>> table = collider_settings();
+    for (auto& setting : table)
+        if (setting.key == "radius") setting.json_unless_default();
+    std::vector<ColliderSettings> colliders(2);
+    colliders[1].shape.kind = ShapeKind::Sphere;
+    colliders[1].shape.radius = 0.25;
+    const nlohmann::ordered_json written = entries_json(table, colliders);
+    EXPECT_FALSE(written[0].contains("radius"));
+    EXPECT_EQ(written[1]["radius"], 0.25);
+    nlohmann::json parent = {{"colliders", nlohmann::json::parse(written.dump())}};
+    JsonObject o(parent, "t.traj", "scene");
+    const std::vector<ColliderSettings> back = entries_from_json(table, o, "colliders");
+    EXPECT_EQ(back[0].shape.radius, ColliderSettings{}.shape.radius);
+    EXPECT_EQ(back[1].shape.radius, 0.25);
+    EXPECT_EQ(entries_json(table, back).dump(), written.dump());
+}
+
+// A kinematic body's mesh and mesh_scale are in its JSON (its shape written as a collider's) but
+// are not keys of the shot file nor of its docs table.
+TEST(SceneShot, AKinematicBodysMeshKeysAreInItsJsonOnly) {
+    expect_error("[[scene.kinematic]]\nmesh = \"a.obj\"\n", {"s.toml:2", "unknown key 'scene.kinematic[0].mesh'"});
+    expect_error("[[scene.kinematic]]\nmesh_scale = 2\n", {"s.toml:2", "unknown key 'scene.kinematic[0].mesh_scale'"});
+    EXPECT_EQ(settings_markdown("scene.kinematic").find("| mesh"), std::string::npos);
+    EXPECT_NE(to_json(busy_scene())["kinematic"][0].dump().find(R"("mesh":"","mesh_scale":1.0)"), std::string::npos);
 }
 
 TEST(SceneSettings, OtherSectionsWriteEveryFieldWithEnumsAsStrings) {
