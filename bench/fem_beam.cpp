@@ -11,9 +11,9 @@
 
 namespace shatter::fem {
 
-namespace {
-
-PieceMotion motion(const FemSolid& solid, const std::vector<uint32_t>& vertex_piece, uint32_t pieces) {
+PieceMotion piece_motion(const FemSolid& solid, const std::vector<uint32_t>& vertex_piece, uint32_t first,
+                         uint32_t last) {
+    const uint32_t pieces = last + 1;
     PieceMotion m;
     m.time = solid.time();
     m.kinetic = solid.kinetic_energy();
@@ -24,32 +24,32 @@ PieceMotion motion(const FemSolid& solid, const std::vector<uint32_t>& vertex_pi
     std::vector<Vec3> P(pieces, Vec3::Zero()), C(pieces, Vec3::Zero());
     for (size_t i = 0; i < vertex_piece.size(); ++i) {
         const uint32_t p = vertex_piece[i];
+        if (p < first || p > last) continue;
         M[p] += mass[3 * i];
         P[p] += mass[3 * i] * v.segment<3>(3 * i);
         C[p] += mass[3 * i] * x.segment<3>(3 * i);
     }
     std::vector<Vec3> L(pieces, Vec3::Zero());
     std::vector<Mat3> I(pieces, Mat3::Zero());
-    for (uint32_t p = 0; p < pieces; ++p) C[p] /= M[p];
+    for (uint32_t p = first; p < pieces; ++p) C[p] /= M[p];
     for (size_t i = 0; i < vertex_piece.size(); ++i) {
         const uint32_t p = vertex_piece[i];
+        if (p < first || p > last) continue;
         const Vec3 r = x.segment<3>(3 * i) - C[p];
         L[p] += mass[3 * i] * r.cross(Vec3(v.segment<3>(3 * i)));
         I[p] += mass[3 * i] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
     }
     double Mt = 0;
     Vec3 Pt = Vec3::Zero();
-    for (uint32_t p = 0; p < pieces; ++p) {
+    for (uint32_t p = first; p < pieces; ++p) {
         m.rigid += P[p].squaredNorm() / (2 * M[p]) + 0.5 * L[p].dot(I[p].ldlt().solve(L[p]));
         Mt += M[p];
         Pt += P[p];
     }
     const Vec3 Vt = Pt / Mt;
-    for (uint32_t p = 0; p < pieces; ++p) m.spread += 0.5 * M[p] * (P[p] / M[p] - Vt).squaredNorm();
+    for (uint32_t p = first; p < pieces; ++p) m.spread += 0.5 * M[p] * (P[p] / M[p] - Vt).squaredNorm();
     return m;
 }
-
-}  // namespace
 
 FemBeamResult run_fem_beam(uint32_t cells, double h, FemIntegrator integrator, double t_start, double t_end) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -83,20 +83,17 @@ FemBeamResult run_fem_beam(uint32_t cells, double h, FemIntegrator integrator, d
     block.shape.size = Vec3(0.08, 0.06, 0.06);
     block.keys = {{0, Vec3(0, 0.032, 0.1)}, {0.2, Vec3(0, 0.032, 0.046)}, {1.5, Vec3(0, 0.032, 0.02)}};
     cs.boxes.push_back({0.5 * block.shape.size, [block](double t) { return kinematic_position(block, t); }, 0.4});
-    double eval_time = t_start;
-    solid.set_extra_force(contact_force(cs, solid.lumped_mass(), &eval_time));
+    attach_contact(solid, cs);
     // Start at rest, undeformed, on the ground (it settles into the ground contact by m g / k,
     // micrometres, within the first milliseconds).
     solid.set_time(t_start);
     const Strength strength;  // 40 MPa
-    const double a_eval = integrator == FemIntegrator::Midpoint ? 0.5 : 1.0;
     PieceMotion before;
     double elastic_before = 0;
     bool have01 = false;
     while (solid.time() < t_end) {
-        eval_time = solid.time() + a_eval * h;
         if (r.first_break < 0) {
-            before = motion(solid, in.split().vertex_piece, in.split().pieces);
+            before = piece_motion(solid, in.split().vertex_piece, 0, in.split().pieces - 1);
             elastic_before = solid.elastic_energy();
         }
         solid.step(h);
@@ -112,12 +109,14 @@ FemBeamResult run_fem_beam(uint32_t cells, double h, FemIntegrator integrator, d
             r.last_break = solid.time();
         }
         if (r.first_break >= 0 && !have01 && solid.time() >= r.first_break + 0.1 - 0.5 * h) {
-            r.at_01 = motion(solid, in.split().vertex_piece, in.split().pieces);
+            r.at_01 = piece_motion(solid, in.split().vertex_piece, 0, in.split().pieces - 1);
             have01 = true;
         }
     }
     r.complete = std::isfinite(solid.kinetic_energy());
-    if (r.first_break >= 0) r.at_05 = motion(solid, in.split().vertex_piece, in.split().pieces);
+    r.halved_steps = solid.halved_steps();
+    r.unconverged_steps = solid.unconverged_steps();
+    if (r.first_break >= 0) r.at_05 = piece_motion(solid, in.split().vertex_piece, 0, in.split().pieces - 1);
     for (const Tie& t : in.split().ties) r.broken += t.broken;
     r.fragments = in.fragments();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -21,6 +21,12 @@ struct PieceMotion {
     double spread = 0;     // the pieces' translational kinetic energy about their common centre of mass (unit: J)
 };
 
+// Pieces first to last of a split mesh (bench/fem_interfaces.h) as rigid bodies: their
+// kinetic energy and translational kinetic energy about their common centre, from the vertices'
+// momenta.
+PieceMotion piece_motion(const FemSolid& solid, const std::vector<uint32_t>& vertex_piece, uint32_t first,
+                         uint32_t last);
+
 struct FemBeamResult {
     uint32_t cells = 0;
     size_t tets = 0, ties = 0, broken = 0, fragments = 0;
@@ -31,6 +37,8 @@ struct FemBeamResult {
     double elastic_at_break = 0;  // the solid's elastic energy the step before the first break (unit: J)
     double seconds = 0;           // wall time
     long steps = 0;
+    long halved_steps = 0;       // steps Newton's method took as two halves (bench/fem_solid.h)
+    long unconverged_steps = 0;  // steps taken unconverged at the shortest step
     bool complete = false;
 };
 

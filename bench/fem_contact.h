@@ -3,12 +3,20 @@
 // of time: the study's kinematic block) and spheres. A vertex inside an obstacle is pushed out
 // along the nearest face's normal (a sphere: radially) with force k d + c (-v_n), c = 2 zeta
 // sqrt(k m) for the vertex's lumped mass m, never pulling; friction is Coulomb's, regularized
-// below a sliding speed v_eps: f_t = -mu f_n v_t / max(|v_t|, v_eps), with f_n held at its value
-// at the step's first evaluation (a vertex entering contact within a step has no friction until
-// the next). Only vertices are tested:
-// an obstacle's edge or corner can enter the solid's faces unseen. The normal stiffness goes to
-// the step's tangent (FemSolid's ExtraForce); friction and damping do not. The penalty method
-// of e.g. Wriggers, "Computational Contact Mechanics", ch. 2, in its most basic form.
+// below a sliding speed v_eps: f_t = -mu f_n v_t / max(|v_t|, v_eps).
+//
+// What a step holds fixed, so that the force has no jump for Newton's method to cycle on: which
+// vertices touch which obstacle (and a box's face) is decided at the step's start; friction takes
+// its normal force f_n = k d - c v_n and its normal from there ("lagged" friction, as e.g. Li et
+// al.'s IPC, SIGGRAPH 2020, lags it) and applies whatever the vertex does within the step; the
+// damping acts only on the vertices in contact at the start, so a vertex that enters within the
+// step meets k d alone (continuous at d = 0) and one that leaves sees max(0, k d - c v_n) fall to
+// zero continuously. A vertex that enters within a step has no friction until the next. Only
+// vertices are tested: an obstacle's edge or corner can enter the solid's faces unseen. The
+// stiffness and damping of every part (friction's exact: mu f_n / |v_t| across the slip, mu f_n /
+// v_eps in every tangential direction while sticking) go to the step's tangent as per-vertex 3 x 3
+// blocks. The penalty method of e.g. Wriggers, "Computational Contact Mechanics", ch. 2, in its
+// most basic form.
 #pragma once
 
 #include <functional>
@@ -41,8 +49,9 @@ struct ContactSettings {
     std::vector<ContactSphere> spheres;
 };
 
-// The contact force as FemSolid's extra force. `time` is read at every evaluation: set it to the
-// time the step evaluates its forces at (midpoint: t + h / 2; backward Euler: t + h).
-ExtraForce contact_force(const ContactSettings& s, const Eigen::VectorXd& lumped_mass, const double* time);
+// Sets the contact force as `solid`'s extra force and its step-begin hook (the contacts at the
+// step's start). Moving obstacles are placed at the solid's evaluation time. The forces keep a
+// reference to the solid.
+void attach_contact(FemSolid& solid, const ContactSettings& s);
 
 }  // namespace shatter::fem

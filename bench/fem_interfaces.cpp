@@ -108,8 +108,10 @@ void Interfaces::traction(const FemSolid& solid, size_t i, double& sigma, double
     const Tie& t = s_.ties[i];
     const Eigen::VectorXd& g = solid.group_forces();
     // (F_b - F_a) / 2: the force into b's copy, and for a vertex shared by two pieces only, minus
-    // the force into a's copy.
-    const Vec3 F = 0.5 * (g.segment<3>(3 * t.copy_b) - g.segment<3>(3 * t.copy_a));
+    // the force into a's copy. A clamped or driven copy's group force includes what holds it:
+    // then the other copy's alone.
+    const Vec3 Fa = g.segment<3>(3 * t.copy_a), Fb = g.segment<3>(3 * t.copy_b);
+    const Vec3 F = solid.constrained(t.copy_a) ? Fb : solid.constrained(t.copy_b) ? Vec3(-Fa) : Vec3(0.5 * (Fb - Fa));
     const double fn = F.dot(t.normal);
     sigma = -fn / t.area;
     tau = (F - fn * t.normal).norm() / t.area;

@@ -126,12 +126,22 @@ void FemSolid::prepare_pattern() {
     const size_t n = vertex_count();
     free_.assign(3 * n, -1);
     n_free_ = 0;
+    // A group with a clamped or driven member moves with it, every member.
+    std::vector<char> held(n, 0);
+    std::vector<Vec3> held_velocity(n, Vec3::Zero());
     for (size_t v = 0; v < n; ++v)
-        if (group_[v] == v && !constrained_[v])
+        if (constrained_[v]) {
+            held[group_[v]] = 1;
+            held_velocity[group_[v]] = drive_velocity_[v];
+        }
+    for (size_t v = 0; v < n; ++v)
+        if (group_[v] == v && !held[v])
             for (int c = 0; c < 3; ++c) free_[3 * v + c] = int(n_free_++);
-    for (size_t v = 0; v < n; ++v)
+    for (size_t v = 0; v < n; ++v) {
         if (group_[v] != v)
             for (int c = 0; c < 3; ++c) free_[3 * v + c] = free_[3 * group_[v] + c];
+        if (held[group_[v]]) v_.segment<3>(3 * v) = held_velocity[group_[v]];
+    }
     // The lower triangle of the tangent: every tet's vertex pairs plus the diagonal.
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(tets_.size() * 78 + n_free_);
@@ -164,6 +174,13 @@ void FemSolid::prepare_pattern() {
                     }
     diag_slot_.resize(n_free_);
     for (size_t i = 0; i < n_free_; ++i) diag_slot_[i] = find(int(i), int(i));
+    vertex_slot_.assign(9 * n, -1);
+    for (size_t v = 0; v < n; ++v)
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const int r = free_[3 * v + i], c = free_[3 * v + j];
+                if (r >= 0 && c >= 0 && r >= c) vertex_slot_[9 * v + 3 * i + j] = find(r, c);
+            }
     ldlt_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
     if (s_.solver == FemLinearSolver::LDLT) ldlt_->analyzePattern(tangent_);
     cg_ = std::make_unique<Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower>>();
@@ -202,13 +219,13 @@ void FemSolid::elastic_forces(const Eigen::VectorXd& x, Eigen::VectorXd& f) {
 }
 
 void FemSolid::total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f,
-                            Eigen::VectorXd& diag_k, Eigen::VectorXd& diag_c) {
+                            Eigen::VectorXd& block_k, Eigen::VectorXd& block_c) {
     f = loads_;
     for (size_t i = 0; i < vertex_count(); ++i) f.segment<3>(3 * i) += mass_.segment<3>(3 * i).cwiseProduct(s_.gravity);
-    diag_k.setZero(f.size());
-    diag_c.setZero(f.size());
+    block_k.setZero(3 * f.size());
+    block_c.setZero(3 * f.size());
     elastic_forces(x, f);
-    if (extra_) extra_(x, v, f, diag_k, diag_c);
+    if (extra_) extra_(x, v, f, block_k, block_c);
 }
 
 void FemSolid::assemble_tangent(double c_k) {
@@ -229,34 +246,76 @@ void FemSolid::assemble_tangent(double c_k) {
     }
 }
 
-int FemSolid::step(double h) {
+void FemSolid::add_blocks(double c_k, const Eigen::VectorXd& block_k, double c_c, const Eigen::VectorXd& block_c) {
+    double* val = tangent_.valuePtr();
+    for (size_t e = 0; e < vertex_slot_.size(); ++e)
+        if (vertex_slot_[e] >= 0 && (block_k[e] != 0 || block_c[e] != 0))
+            val[vertex_slot_[e]] += c_k * block_k[e] + c_c * block_c[e];
+}
+
+int FemSolid::step(double h) { return step_within(h, 0); }
+
+// A step of h, or when Newton's method does not converge in it, two of h / 2 (down to
+// h / 2^max_halvings, where the last iterate is taken as it is and counted).
+int FemSolid::step_within(double h, int depth) {
+    const Eigen::VectorXd x0 = x_, v0 = v_;
+    const double t0 = time_;
+    bool converged = false;
+    const int it = newton_step(h, converged);
+    if (converged || depth >= s_.max_halvings) {
+        if (!converged) ++unconverged_steps_;
+        return it;
+    }
+    x_ = x0;
+    v_ = v0;
+    time_ = t0;
+    ++halved_steps_;
+    const int a = step_within(h / 2, depth + 1);
+    const int b = step_within(h / 2, depth + 1);
+    return it + a + b;
+}
+
+int FemSolid::newton_step(double h, bool& converged) {
     if (!pattern_ready_) prepare_pattern();
     const bool midpoint = s_.integrator == FemIntegrator::Midpoint;
     const double c_k = midpoint ? h * h / 4 : h * h;
     const Eigen::VectorXd x0 = x_, v0 = v_;
-    Eigen::VectorXd v1 = v0, x1(x0.size()), xe(x0.size()), ve(x0.size()), f, diag_k, diag_c;
+    eval_time_ = time_ + (midpoint ? 0.5 : 1.0) * h;
+    if (step_begin_) step_begin_(time_, x0, v0);
+    Eigen::VectorXd v1 = v0, x1(x0.size()), xe(x0.size()), ve(x0.size()), f, block_k, block_c;
     const double c_c = midpoint ? h / 2 : h;
     Eigen::VectorXd r(n_free_), dv(n_free_);
-    int it = 0;
-    for (; it < s_.max_newton; ++it) {
-        x1 = x0 + (midpoint ? 0.5 * h : h) * (midpoint ? Eigen::VectorXd(v0 + v1) : v1);
+    // The residual m (v1 - v0) - h f(x(v1), v1) over the free coordinates, at v.
+    const auto residual = [&](const Eigen::VectorXd& v, Eigen::VectorXd& res) {
+        x1 = x0 + (midpoint ? 0.5 * h : h) * (midpoint ? Eigen::VectorXd(v0 + v) : v);
         xe = midpoint ? Eigen::VectorXd(0.5 * (x0 + x1)) : x1;
-        ve = midpoint ? Eigen::VectorXd(0.5 * (v0 + v1)) : v1;
-        total_forces(xe, ve, f, diag_k, diag_c);
-        r.setZero();
+        ve = midpoint ? Eigen::VectorXd(0.5 * (v0 + v)) : v;
+        total_forces(xe, ve, f, block_k, block_c);
+        res.setZero();
         for (size_t c = 0; c < free_.size(); ++c)
-            if (free_[c] >= 0) r[free_[c]] += mass_[c] * (v1[c] - v0[c]) - h * f[c];
-        const bool reuse = constant_factored_ && factored_c_ == c_k && !s_.corotational && diag_k.isZero(0);
+            if (free_[c] >= 0) res[free_[c]] += mass_[c] * (v[c] - v0[c]) - h * f[c];
+    };
+    residual(v1, r);
+    converged = false;
+    int it = 0;
+    double last_update = 0, previous_update = 0;  // max |dv| of the last two updates
+    Eigen::VectorXd v_try(v1.size()), r_try(n_free_);
+    for (; it < s_.max_newton; ++it) {
+        const bool reuse = constant_factored_ && factored_c_ == c_k && !s_.corotational && block_k.isZero(0);
         // Modified Newton: the tangent of the first iterate, refreshed when the extra force's
-        // stiffness changed (a contact began or ended), else Newton diverges on a stiff contact.
-        const bool contacts_changed = it > 0 && diag_k != factored_diag_k_;
-        if ((it == 0 && !reuse) || contacts_changed) {
+        // stiffness changed (a contact began or ended), else Newton diverges on a stiff contact, and
+        // when the last update shrank by less than 4 (friction's damping, which depends on the
+        // sliding velocity, or the rotations moved on).
+        const bool contacts_changed = it > 0 && block_k != factored_block_k_;
+        const bool slow = it > 1 && last_update > 0.25 * previous_update;
+        if ((it == 0 && !reuse) || contacts_changed || slow) {
             if (it > 0) update_rotations(xe);
-            factored_diag_k_ = diag_k;
+            factored_block_k_ = block_k;
             assemble_tangent(c_k);
             double* val = tangent_.valuePtr();
             for (size_t c = 0; c < free_.size(); ++c)
-                if (free_[c] >= 0) val[diag_slot_[free_[c]]] += mass_[c] + c_k * diag_k[c] + c_c * diag_c[c];
+                if (free_[c] >= 0) val[diag_slot_[free_[c]]] += mass_[c];
+            add_blocks(c_k, block_k, c_c, block_c);
             if (s_.solver == FemLinearSolver::LDLT) {
                 ldlt_->factorize(tangent_);
                 if (ldlt_->info() != Eigen::Success)
@@ -264,7 +323,7 @@ int FemSolid::step(double h) {
             } else {
                 cg_->compute(tangent_);
             }
-            constant_factored_ = !s_.corotational && diag_k.isZero(0);
+            constant_factored_ = !s_.corotational && block_k.isZero(0);
             factored_c_ = c_k;
         }
         if (s_.solver == FemLinearSolver::LDLT) {
@@ -273,15 +332,31 @@ int FemSolid::step(double h) {
             dv = cg_->solve(-r);
             cg_iterations_ += cg_->iterations();
         }
+        // Backtracking on the residual's norm: a contact that turns on and off between iterates
+        // (the penalty force's kink) otherwise sends Newton round a cycle of two.
+        const double r0 = r.norm();
+        double step = 1;
+        for (int ls = 0;; ++ls) {
+            v_try = v1;
+            for (size_t c = 0; c < free_.size(); ++c)
+                if (free_[c] >= 0) v_try[c] += step * dv[free_[c]];
+            residual(v_try, r_try);
+            if (r_try.norm() <= (1 - 1e-4 * step) * r0 || ls >= s_.max_backtracks) break;
+            step *= 0.5;
+        }
+        v1 = v_try;
+        r = r_try;
         double dmax = 0, vmax = 0;
         for (size_t c = 0; c < free_.size(); ++c)
             if (free_[c] >= 0) {
-                v1[c] += dv[free_[c]];
-                dmax = std::max(dmax, std::abs(dv[free_[c]]));
+                dmax = std::max(dmax, std::abs(step * dv[free_[c]]));
                 vmax = std::max(vmax, std::abs(v1[c]));
             }
-        if (dmax <= s_.newton_tol * (vmax + 1e-3)) {
+        previous_update = last_update;
+        last_update = dmax;
+        if (dmax <= s_.newton_tol * (vmax + 1e-3) + s_.newton_floor) {
             ++it;
+            converged = true;
             break;
         }
     }
@@ -294,18 +369,15 @@ int FemSolid::step(double h) {
 
 int FemSolid::solve_static() {
     if (!pattern_ready_) prepare_pattern();
-    Eigen::VectorXd f, diag_k, diag_c, rhs(n_free_);
+    Eigen::VectorXd f, block_k, block_c, rhs(n_free_);
     int it = 0;
     for (; it < s_.max_newton; ++it) {
-        total_forces(x_, v_, f, diag_k, diag_c);
+        total_forces(x_, v_, f, block_k, block_c);
         assemble_tangent(1.0);
-        double* val = tangent_.valuePtr();
+        add_blocks(1.0, block_k, 0.0, block_c);
         rhs.setZero();
         for (size_t c = 0; c < free_.size(); ++c)
-            if (free_[c] >= 0) {
-                rhs[free_[c]] += f[c];
-                val[diag_slot_[free_[c]]] += diag_k[c];
-            }
+            if (free_[c] >= 0) rhs[free_[c]] += f[c];
         if (s_.solver != FemLinearSolver::LDLT) ldlt_->analyzePattern(tangent_);
         ldlt_->factorize(tangent_);
         constant_factored_ = false;
@@ -321,7 +393,7 @@ int FemSolid::solve_static() {
     }
     v_.setZero();
     for (size_t v = 0; v < vertex_count(); ++v) v_.segment<3>(3 * v) = drive_velocity_[v];
-    total_forces(x_, v_, f, diag_k, diag_c);
+    total_forces(x_, v_, f, block_k, block_c);
     group_force_ = -f;
     return it;
 }

@@ -18,9 +18,11 @@
 //   step's first iterate (c = 1/4 midpoint, 1 backward Euler), K the corotated stiffness
 //   R K_e R^T (the derivative of R is left out, as Mueller & Gross do), factored by Eigen's
 //   SimplicialLDLT. Without corotation the tangent is exact and constant: it is factored once.
+//   Each update is backtracked until the residual's norm falls; a step that does not converge
+//   in max_newton iterations is taken again as two halves.
 // - Boundary conditions: clamped vertices (fixed where they are) and driven vertices (constant
 //   velocity); gravity; constant vertex loads; and an optional extra force (contact, in its own
-//   file) with a diagonal stiffness and damping for the tangent (refreshed within a step when
+//   file) with a per-vertex stiffness and damping for the tangent (refreshed within a step when
 //   the stiffness changes, i.e. a contact begins or ends).
 // Units: SI (m, kg, s, N, J, Pa).
 #pragma once
@@ -58,14 +60,19 @@ struct FemSettings {
     FemLinearSolver solver = FemLinearSolver::LDLT;
     double cg_tol = 1e-10;      // CG's relative residual
     int max_newton = 20;        // Newton iterations per step at most
-    double newton_tol = 1e-10;  // stop when max |dv| <= newton_tol x (max |v| + 1e-3 m/s)
+    double newton_tol = 1e-10;  // stop when max |dv| <= newton_tol x (max |v| + 1e-3 m/s) + newton_floor
+    double newton_floor = 1e-9; // (unit: m/s) below round-off's reach at rest, far below any motion that matters
+    int max_backtracks = 6;     // halvings of a Newton update while the residual's norm does not fall
+    int max_halvings = 4;       // a step whose Newton iteration does not converge is taken as two halves, down to h / 2^this
 };
 
 // An extra force evaluated at positions x and velocities v (3 per vertex): adds to f and, for the
-// step's tangent, to diag_k (its stiffness -df_i/dx_i, per coordinate, >= 0) and diag_c (its
-// damping -df_i/dv_i, >= 0).
+// step's tangent, to block_k (its stiffness -df_v/dx_v) and block_c (its damping -df_v/dv_v):
+// per vertex v a symmetric positive semi-definite 3 x 3 block, 9 numbers row by row.
 using ExtraForce = std::function<void(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f,
-                                      Eigen::VectorXd& diag_k, Eigen::VectorXd& diag_c)>;
+                                      Eigen::VectorXd& block_k, Eigen::VectorXd& block_c)>;
+
+using StepBegin = std::function<void(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v)>;
 
 class FemSolid {
 public:
@@ -76,18 +83,29 @@ public:
     void clamp(const std::vector<uint32_t>& vertices);                        // fixed where they are
     void drive(const std::vector<uint32_t>& vertices, const Vec3& velocity);  // moved at constant velocity
     void set_load(uint32_t vertex, const Vec3& force);                        // constant (unit: N)
+    bool constrained(uint32_t vertex) const { return constrained_[vertex]; }  // clamped or driven
     void set_extra_force(ExtraForce f) { extra_ = std::move(f); }
+    // Called at the start of every step with the time, positions and velocities there (e.g. for
+    // forces that hold a value through the step).
+    void set_step_begin(StepBegin f) { step_begin_ = std::move(f); }
     // Vertices that move as one: vertex v shares the degrees of freedom of group[v] (group[v] ==
     // v for a vertex of its own). The pieces' copies of an interface vertex are joined so until
-    // their interface breaks (bench/fem_interfaces.h). Copies must be at the same place.
+    // their interface breaks (bench/fem_interfaces.h). Copies must be at the same place. A group
+    // with a clamped or driven member moves with it.
     void set_vertex_groups(const std::vector<uint32_t>& group);
     // The force the rest of its group exerted on each vertex over the last step (unit: N):
     // m (v1 - v0) / h minus the vertex's own tets', gravity's, loads' and extra forces. Zero for
     // a vertex of its own, up to the Newton tolerance.
     const Eigen::VectorXd& group_forces() const { return group_force_; }
 
-    // One step of length h (unit: s). Returns the Newton iterations it took.
+    // One step of length h (unit: s), as shorter ones where Newton's method does not converge.
+    // Returns the Newton iterations it took.
     int step(double h);
+    // The time the step evaluates its forces at (midpoint: t + h / 2; backward Euler: t + h), for
+    // an extra force that depends on time.
+    double eval_time() const { return eval_time_; }
+    long halved_steps() const { return halved_steps_; }       // steps taken as two halves
+    long unconverged_steps() const { return unconverged_steps_; }  // taken unconverged at the shortest step
     // Static equilibrium under gravity, loads and the boundary conditions (Newton on the
     // corotational forces; exact in one solve without corotation). Velocities are set to zero.
     int solve_static();
@@ -123,10 +141,14 @@ public:
 
 private:
     void prepare_pattern();
+    int step_within(double h, int depth);
+    int newton_step(double h, bool& converged);
     void update_rotations(const Eigen::VectorXd& x);
     void assemble_tangent(double c_k);  // c_k R K_e R^T into tangent_'s lower triangle
-    void total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f, Eigen::VectorXd& diag_k,
-                      Eigen::VectorXd& diag_c);
+    void total_forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd& f, Eigen::VectorXd& block_k,
+                      Eigen::VectorXd& block_c);
+    // c_k block_k + c_c block_c into the tangent's per-vertex 3 x 3 blocks (lower triangle).
+    void add_blocks(double c_k, const Eigen::VectorXd& block_k, double c_c, const Eigen::VectorXd& block_c);
 
     FemSettings s_;
     std::vector<Tet> tets_;
@@ -146,14 +168,17 @@ private:
     Eigen::SparseMatrix<double> tangent_;
     std::vector<int> slot_;       // per tet entry (tet, a, b, i, j) in order: index into tangent_'s values, -1 unused
     std::vector<int> diag_slot_;  // per free coordinate: its diagonal's value index
+    std::vector<int> vertex_slot_;  // per vertex and (i, j) of its 3 x 3 block: value index, -1 unused
     std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt_;
     std::unique_ptr<Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower>> cg_;
     long cg_iterations_ = 0;
     bool constant_factored_ = false;
     double factored_c_ = -1;
-    Eigen::VectorXd factored_diag_k_;
+    Eigen::VectorXd factored_block_k_;
     ExtraForce extra_;
-    double time_ = 0;
+    StepBegin step_begin_;
+    double time_ = 0, eval_time_ = 0;
+    long halved_steps_ = 0, unconverged_steps_ = 0;
 };
 
 }  // namespace shatter::fem

@@ -47,6 +47,13 @@ struct Headlines {
         bool chosen_is_shipped;
     };
     std::vector<Smallest> smallest;
+    // reference: the chain (assets/chain.toml) up to its first break on the continuum reference
+    // (2 cells across): when its first joint separated, the quasi-static prediction of that, the
+    // rigid method's first break as shipped (unit: s); the middle joint's force the step before the
+    // first tie broke over a uniform bar's (unit: 1).
+    double chain_fem_break = NAN, chain_predicted_break = NAN, chain_rigid_break = NAN;
+    double chain_middle_force_ratio = NAN;
+    size_t chain_fem_joints = 0;  // joints whose ties all broke
 };
 
 bool section_identities(const Options& opt, Headlines& h);
@@ -56,5 +63,6 @@ bool section_stability(const Options& opt, Headlines& h);
 bool section_continuum(const Options& opt, Headlines& h);
 bool section_speed(const Options& opt, Headlines& h);
 bool section_smallest(const Options& opt, Headlines& h);
+bool section_reference(const Options& opt, Headlines& h);
 
 }  // namespace shatter::study
