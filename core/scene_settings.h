@@ -158,6 +158,9 @@ struct SimulateSettings {
     double max_duration = 10;   // the cap of duration = "auto" (unit: s)
     double fps = 30;            // frames recorded per second (unit: 1/s)
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
+    // substeps = "auto": the step chosen as the run goes (simulate/simulate.h, "The automatic
+    // step"); `substeps` is then unused.
+    bool auto_substeps = false;
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     JointSolve joints = JointSolve::Iterative;  // "iterative" or "direct" (simulate/bullet_solver.h)
     EnergizeMethod method = EnergizeMethod::Exact;  // sets the next three (apply_energize_method)

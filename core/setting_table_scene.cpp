@@ -27,6 +27,20 @@ void read_duration(TomlSection& s, Shot& shot) {
     }
 }
 
+void read_substeps(TomlSection& s, Shot& shot) {
+    SimulateSettings& simulate = shot.simulate;
+    const toml::node* substeps = s.node("substeps");
+    if (substeps && substeps->is_string()) {
+        if (substeps->as_string()->get() != "auto")
+            s.fail(substeps, fmt::format("{} must be a whole number of steps per frame or \"auto\"",
+                                         s.key_name("substeps")),
+                   "substeps = 8, or substeps = \"auto\" (the step chosen as the run goes)");
+        simulate.auto_substeps = true;
+    } else if (s.integer("substeps", simulate.substeps, kSubstepsLimits)) {
+        simulate.auto_substeps = false;  // a number replaces an "auto" given before (a flag over the shot)
+    }
+}
+
 // The keys every body of the scene has, between its shape keys and its colour.
 template <class Root>
 std::vector<BasicSetting<Root>> pose_settings() {
@@ -347,8 +361,15 @@ SettingsSection simulate_section() {
              number("fps", "frames/s", at(&Shot::simulate, &SimulateSettings::fps), kFpsLimits,
                     "frames recorded per second")
                  .flag("--fps"),
-             whole("substeps", "steps per frame", at(&Shot::simulate, &SimulateSettings::substeps), kSubstepsLimits,
-                   "solver steps per frame: time step h = 1 / (fps substeps)")
+             custom("substeps", "steps per frame, or \"auto\"", "8", "1 to 10000, or \"auto\"",
+                    "solver steps per frame: time step h = 1 / (fps substeps). \"auto\": each frame is cut into "
+                    "blocks of at most 1/240 s, each run as one step while the joints carry less than half their "
+                    "strength and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two; "
+                    "docs/physics.md, \"The automatic step\")",
+                    read_substeps)
+                 .json([](const Shot& s, ojson& j) {
+                     j["substeps"] = s.simulate.auto_substeps ? ojson("auto") : ojson(s.simulate.substeps);
+                 })
                  .flag("--substeps"),
              whole("iterations", "count", at(&Shot::simulate, &SimulateSettings::iterations), kIterationsLimits,
                    "sequential-impulse iterations per step")

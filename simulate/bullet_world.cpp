@@ -351,6 +351,37 @@ void BulletWorld::step() {
     release_parted_pairs();
 }
 
+void BulletWorld::set_step(double h) {
+    setup_.h = h;
+    for (auto& j : impl_->joints) {
+        if (!j.constraint) continue;
+        j.constraint->set_step(h);
+        if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * h));
+    }
+}
+
+double BulletWorld::max_load() const {
+    double load = 0;
+    for (size_t c = 0; c < impl_->joints.size(); ++c) {
+        if (!active(c)) continue;
+        const double f = force_on_a(c).norm(), s = strength(c);
+        load = std::max(load, s > 0 ? f / s : (f > 0 ? INFINITY : 0.0));
+    }
+    return load;
+}
+
+void BulletWorld::joint_frequencies(double* highest, double* lowest) const {
+    *highest = 0, *lowest = 0;
+    for (size_t c = 0; c < impl_->joints.size(); ++c) {
+        if (!active(c) || !impl_->joints[c].constraint) continue;
+        const auto& j = *impl_->joints[c].constraint;
+        const Vec3 w = j.row_inverse_masses();
+        const double high = std::sqrt(j.stiffness() * w.maxCoeff()), low = std::sqrt(j.stiffness() * w.minCoeff());
+        *highest = std::max(*highest, high);
+        *lowest = *lowest == 0 ? low : std::min(*lowest, low);
+    }
+}
+
 int BulletWorld::last_step_iterations() const { return impl_->solver.most_iterations(); }
 
 struct BulletWorld::Snapshot {

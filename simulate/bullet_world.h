@@ -59,6 +59,16 @@ public:
     // The most solver iterations a batch of islands took in the last step.
     int last_step_iterations() const;
     double h() const { return setup_.h; }
+    // Changes the solver step for the steps that follow (`[simulate] substeps = "auto"`): the
+    // joints' ERP and CFM and Bullet's breaking thresholds follow it.
+    void set_step(double h);
+    // The largest load of an active joint: |force| / strength from the last step's feedback (0
+    // when none is active).
+    double max_load() const;
+    // Over the active joints, the largest natural frequency omega = sqrt(k w) (w the largest row
+    // inverse effective mass: the stiffest row) and the smallest (the softest row, which sets the
+    // largest CFM); both 0 when none is active (unit: rad/s).
+    void joint_frequencies(double* highest, double* lowest) const;
 
     // State of every body, for rollback.
     struct Snapshot;

@@ -29,6 +29,11 @@ Vec3 CompliantPointConstraint::row_inverse_masses() const {
 
 double CompliantPointConstraint::row_cfm(double w) const { return spring_cfm(k_, c_, h_, w); }
 
+void CompliantPointConstraint::set_step(double h) {
+    h_ = h;
+    setParam(BT_CONSTRAINT_ERP, btScalar(spring_erp(k_, c_, h_)), -1);
+}
+
 void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
     btPoint2PointConstraint::getInfo2(info);
     const Vec3 w = row_inverse_masses();

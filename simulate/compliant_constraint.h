@@ -26,6 +26,8 @@ public:
     // The CFM of a row with inverse effective mass w at this constraint's k, c and h.
     double row_cfm(double w) const;
 
+    // A new solver step h (the automatic step): ERP and the rows' CFM follow it.
+    void set_step(double h);
     double stiffness() const { return k_; }
     double damping() const { return c_; }
     // The force at which it breaks (unit: N): the scale of its convergence residual.

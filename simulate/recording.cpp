@@ -22,6 +22,7 @@ std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
                              {"impulse_Ns", k.magnitude},
                              {"energy_J", k.energy}});
         nlohmann::ordered_json j = {{"time_s", b.time},
+                                    {"step_s", b.step},
                                     {"constraint", b.constraint},
                                     {"pieces", {b.piece_a, b.piece_b}},
                                     {"pivot_m", vec(b.pivot)},

@@ -85,6 +85,28 @@ public:
         std::shared_ptr<BulletWorld::Snapshot> start;
         if (in_.simulate.rollback) start = world_.save();
         world_.step();
+        after_step(out, start);
+    }
+
+    // The automatic step's probe: one step of the whole block, kept and processed as any step when
+    // every joint carries less than kAutoRefineLoad of its strength; otherwise undone (false).
+    bool probe(SimulationResult& out, double block) {
+        const std::shared_ptr<BulletWorld::Snapshot> start = world_.save();
+        world_.set_step(block);
+        world_.step();
+        if (!(world_.max_load() < kAutoRefineLoad)) {
+            world_.restore(*start);
+            for (size_t c = 0; c < world_.constraint_count(); ++c)
+                if (world_.bullet_disabled(c)) world_.enable(c);  // Bullet's own break, undone too
+            ++out.rejected_steps;
+            return false;
+        }
+        after_step(out, in_.simulate.rollback ? start : nullptr);
+        return true;
+    }
+
+    // After a step: the residual, then the step's breaks (a rollback from `start` re-runs it).
+    void after_step(SimulationResult& out, const std::shared_ptr<BulletWorld::Snapshot>& start) {
         ++out.steps;
         int64_t worst = -1;
         const double r = world_.max_joint_residual(&worst);
@@ -130,6 +152,7 @@ private:
     void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame, SimulationResult& out) {
         const auto start = std::chrono::steady_clock::now();
         BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame);
+        r.step = world_.h();
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy + r.momentum_work;
         removed_ += r.kicks.stored_energy;
@@ -185,6 +208,17 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
 
 }  // namespace
 
+uint32_t auto_split(double block, double highest, double lowest, bool direct_joints, double max_cfm) {
+    if (!(highest > 0)) return 1;
+    uint32_t n = 1;
+    while (n < kAutoMaxSplit && highest * block / n > kAutoOmegaH) n *= 2;
+    // Iterative joints converge only while CFM = 1 / (omega h)^2 <= max_cfm for the softest row
+    // (docs/physics.md section 7): h >= 1 / (omega sqrt(max_cfm)).
+    if (!direct_joints && lowest > 0)
+        while (n > 1 && lowest * (block / n) * std::sqrt(max_cfm) < 1) n /= 2;
+    return n;
+}
+
 double rest_speed(const Model& model) {
     Eigen::AlignedBox3d box;
     for (const Piece& p : model.pieces)
@@ -197,7 +231,12 @@ uint32_t frame_count(const SimulateSettings& s) {
 }
 
 SimulationResult simulate(const Model& model, const SimulationInput& shot_input, const std::string& model_id) {
-    const double h = 1.0 / (shot_input.simulate.fps * shot_input.simulate.substeps);
+    // With substeps = "auto" the world starts at the coarsest step, a whole block (the CFM check
+    // and stiffen then hold for every step the run takes: auto_split keeps the fine ones within
+    // max_cfm).
+    const uint32_t blocks = uint32_t(std::max(1.0, std::ceil(1.0 / (shot_input.simulate.fps * kAutoBlock) - 1e-9)));
+    const double block = 1.0 / (shot_input.simulate.fps * blocks);
+    const double h = shot_input.simulate.auto_substeps ? block : 1.0 / (shot_input.simulate.fps * shot_input.simulate.substeps);
     const bool bullet_impulse = shot_input.simulate.break_criterion == BreakCriterion::BulletImpulse;
     SimulationInput in = shot_input;
     // Direct joints solve every joint row exactly whatever its CFM: no stiffness is too soft for
@@ -256,11 +295,39 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
     uint32_t still = 0;  // frames in a row at rest
     Progress progress("simulate", frames - 1);
+    bool fine = false;  // substeps = "auto": the next block runs in fine steps
+    auto after_step = [&] {
+        guard.after_step(world);
+        return check_stability(world, guard, run.injected(), in.simulate.on_instability, out);
+    };
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
-        for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
-            run.substep(out);
-            guard.after_step(world);
-            if (!check_stability(world, guard, run.injected(), in.simulate.on_instability, out)) break;
+        if (!in.simulate.auto_substeps) {
+            for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
+                run.substep(out);
+                if (!after_step()) break;
+            }
+        } else {
+            for (uint32_t b = 0; b < blocks && out.complete; ++b) {
+                if (!fine) {
+                    if (run.probe(out, block)) {
+                        after_step();
+                        continue;
+                    }
+                    fine = true;
+                }
+                double highest = 0, lowest = 0;
+                world.joint_frequencies(&highest, &lowest);
+                const uint32_t n = auto_split(block, highest, lowest, direct, in.simulate.max_cfm);
+                world.set_step(block / n);
+                const size_t breaks = out.breaks.size();
+                double peak = 0;
+                for (uint32_t s = 0; s < n; ++s) {
+                    run.substep(out);
+                    peak = std::max(peak, world.max_load());
+                    if (!after_step()) break;
+                }
+                fine = !(peak < kAutoCalmLoad && out.breaks.size() == breaks);
+            }
         }
         if (!out.complete) break;
         record(world, t);

@@ -6,6 +6,9 @@
 //     [save state]  step  ->  find overloaded constraints  ->  break policy picks
 //     -> [rollback: restore, remove them, step again | remove them]  ->  energize each
 //   record the frame's poses and energy books
+// With substeps = "auto" the substeps of a frame are blocks of at most 1/240 s, each run as one
+// probe step or, when the probe's joints carry kAutoRefineLoad of their strength or more, as the
+// fine steps the stiffest joint needs (below, "The automatic step").
 #pragma once
 
 #include <string>
@@ -27,6 +30,7 @@ struct SimulationInput {
 
 struct BreakRecord {
     double time = 0;  // (unit: s) end of the step in which it broke
+    double step = 0;  // the length of that step (unit: s)
     uint32_t constraint = 0, piece_a = 0, piece_b = 0;
     Vec3 pivot = Vec3::Zero();  // (unit: m, world)
     Vec3 force = Vec3::Zero();  // on piece a (unit: N)
@@ -80,7 +84,8 @@ struct SimulationResult {
     Trajectory trajectory;
     std::vector<BreakRecord> breaks;
     std::vector<EnergySample> energy;
-    uint64_t steps = 0;
+    uint64_t steps = 0;           // solver steps kept
+    uint64_t rejected_steps = 0;  // substeps = "auto": probe steps undone to be re-run finer
     // duration = "auto": when the last piece came to rest (the movie ends kRestHold later);
     // negative when the simulation reached max_duration first, or without "auto" (unit: s).
     double rest_time = -1;
@@ -115,6 +120,25 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
 // Where the frames go: frame count for duration and fps (frame 0 at t = 0 included). With
 // duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);
+
+// The automatic step (substeps = "auto"). Each frame is cut into blocks of at most
+// kAutoBlock. A block starts as one probe step of its whole length; the probe is kept when every
+// active joint carries less than kAutoRefineLoad of its strength, and otherwise undone (the
+// bodies' state restored) and the block re-run in n equal steps, n the least power of two with
+// omega h <= kAutoOmegaH for the stiffest joint row (omega = sqrt(k w)), at most kAutoMaxSplit,
+// and with iterative joints no more than keeps every row's CFM within max_cfm. Blocks stay fine
+// until one ends with no break and every joint below kAutoCalmLoad. A joint's force in a step
+// that treats it as rigid is m v / h (docs/physics.md section 7): an impact or a joint nearing its
+// strength shows in the probe as a load over kAutoRefineLoad, and breaks only ever come from fine
+// steps or from probes whose loads stayed under it.
+inline constexpr double kAutoBlock = 1.0 / 240;   // (unit: s)
+inline constexpr double kAutoRefineLoad = 0.5;    // of a joint's strength
+inline constexpr double kAutoCalmLoad = 0.25;     // of a joint's strength
+inline constexpr double kAutoOmegaH = 2.5;        // (unit: 1)
+inline constexpr uint32_t kAutoMaxSplit = 4096;   // fine steps per block, at most
+// The fine steps per block of length `block` for joints whose rows' frequencies span
+// [lowest, highest] (rad/s; BulletWorld::joint_frequencies): 1 with no joints.
+uint32_t auto_split(double block, double highest, double lowest, bool direct_joints, double max_cfm);
 
 // duration = "auto": a piece is at rest when no point of it moved faster than the rest speed
 // between the last two recorded frames ((|dx| + angle r) x fps, r its radius about its centre of
