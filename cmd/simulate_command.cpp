@@ -58,9 +58,13 @@ int run(const SimulateFlags& flags) {
 
     double stored = 0, injected = 0;
     for (const BreakRecord& b : r.breaks) stored += b.kicks.stored_energy, injected += b.injected_energy;
-    const double h = 1.0 / (in.simulate.fps * in.simulate.substeps);
-    fmt::print("simulate: {} frames ({:g} s at {:g} fps), {} steps of {:.4g} s, {} pieces, {} of {} constraints broke\n",
-               r.trajectory.frames(), in.simulate.duration, in.simulate.fps, r.steps, h, model.pieces.size(),
+    const std::string steps =
+        in.simulate.auto_substeps
+            ? fmt::format("{} steps chosen as it went (substeps = \"auto\"; {} probe steps re-run finer)", r.steps,
+                          r.rejected_steps)
+            : fmt::format("{} steps of {:.4g} s", r.steps, 1.0 / (in.simulate.fps * in.simulate.substeps));
+    fmt::print("simulate: {} frames ({:g} s at {:g} fps), {}, {} pieces, {} of {} constraints broke\n",
+               r.trajectory.frames(), in.simulate.duration, in.simulate.fps, steps, model.pieces.size(),
                r.breaks.size(), model.constraints.size());
     fmt::print("energy:   {:.6g} J stored in the broken constraints, {:.6g} J injected (alpha {:g})\n", stored, injected,
                in.material.alpha);

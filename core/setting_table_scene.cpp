@@ -363,7 +363,7 @@ SettingsSection simulate_section() {
                  .flag("--fps"),
              custom("substeps", "steps per frame, or \"auto\"", "8", "1 to 10000, or \"auto\"",
                     "solver steps per frame: time step h = 1 / (fps substeps). \"auto\": each frame is cut into "
-                    "blocks of at most 1/240 s, each run as one step while the joints carry less than half their "
+                    "blocks of at most 1/480 s, each run as one step while the joints carry less than half their "
                     "strength and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two; "
                     "docs/physics.md, \"The automatic step\")",
                     read_substeps)

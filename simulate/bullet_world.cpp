@@ -370,6 +370,53 @@ double BulletWorld::max_load() const {
     return load;
 }
 
+double BulletWorld::approach_load() {
+    Impl& m = *impl_;
+    std::vector<double> scale(m.pieces.size(), 0.0);  // per piece: the largest sqrt(k / w) / strength
+    bool any = false;
+    for (size_t c = 0; c < m.joints.size(); ++c) {
+        const auto& j = m.joints[c];
+        if (!j.active || !j.constraint || !(j.strength > 0)) continue;
+        const double w = j.constraint->row_inverse_masses().maxCoeff();
+        if (!(w > 0)) continue;
+        const double s = std::sqrt(j.constraint->stiffness() / w) / j.strength;
+        scale[j.piece_a] = std::max(scale[j.piece_a], s);
+        scale[j.piece_b] = std::max(scale[j.piece_b], s);
+        any = true;
+    }
+    if (!any) return 0;
+    m.world.performDiscreteCollisionDetection();
+    double load = 0;
+    btDispatcher& d = m.dispatcher;
+    for (int i = 0; i < d.getNumManifolds(); ++i) {
+        const btPersistentManifold* manifold = d.getManifoldByIndexInternal(i);
+        const btRigidBody* a = btRigidBody::upcast(manifold->getBody0());
+        const btRigidBody* b = btRigidBody::upcast(manifold->getBody1());
+        if (!a || !b) continue;
+        auto scale_of = [&](const btRigidBody* body) {
+            const int piece = body->getUserIndex();
+            return piece >= 0 && size_t(piece) < scale.size() ? scale[size_t(piece)] : 0.0;
+        };
+        const double s = std::max(scale_of(a), scale_of(b));
+        if (!(s > 0)) continue;
+        for (int p = 0; p < manifold->getNumContacts(); ++p) {
+            const btManifoldPoint& point = manifold->getContactPoint(p);
+            if (!(point.getDistance() < 0)) continue;
+            const btVector3 va = a->getVelocityInLocalPoint(point.getPositionWorldOnA() - a->getCenterOfMassPosition());
+            const btVector3 vb = b->getVelocityInLocalPoint(point.getPositionWorldOnB() - b->getCenterOfMassPosition());
+            const double approach = -double((va - vb).dot(point.m_normalWorldOnB));  // the normal points from B to A
+            load = std::max(load, approach * s);
+        }
+    }
+    return load;
+}
+
+double BulletWorld::joint_frequency(size_t c) const {
+    if (!active(c) || !impl_->joints[c].constraint) return 0;
+    const auto& j = *impl_->joints[c].constraint;
+    return std::sqrt(j.stiffness() * j.row_inverse_masses().maxCoeff());
+}
+
 void BulletWorld::joint_frequencies(double* highest, double* lowest) const {
     *highest = 0, *lowest = 0;
     for (size_t c = 0; c < impl_->joints.size(); ++c) {
@@ -392,6 +439,19 @@ struct BulletWorld::Snapshot {
     std::vector<Body> bodies;
     double time = 0;
 };
+
+void BulletWorld::forget_contact_impulses() {
+    btDispatcher& d = impl_->dispatcher;
+    for (int i = 0; i < d.getNumManifolds(); ++i) {
+        btPersistentManifold* m = d.getManifoldByIndexInternal(i);
+        for (int p = 0; p < m->getNumContacts(); ++p) {
+            btManifoldPoint& point = m->getContactPoint(p);
+            point.m_appliedImpulse = 0;
+            point.m_appliedImpulseLateral1 = 0;
+            point.m_appliedImpulseLateral2 = 0;
+        }
+    }
+}
 
 std::shared_ptr<BulletWorld::Snapshot> BulletWorld::save() const {
     auto s = std::make_shared<Snapshot>();

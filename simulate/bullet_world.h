@@ -65,6 +65,15 @@ public:
     // The largest load of an active joint: |force| / strength from the last step's feedback (0
     // when none is active).
     double max_load() const;
+    // The load an impact that has begun would bring on the joints: contacts are found for the
+    // bodies as they are now (Bullet finds them at the start of a step), and every penetrating
+    // contact point of a piece with active joints whose bodies approach at v along the normal
+    // counts v sqrt(k / w) / strength for the stiffest of that piece's joints, the peak force a
+    // sudden stop of one side of a joint brings (docs/physics.md section 7). 0 without such.
+    double approach_load();
+    // A joint's natural frequency along its stiffest row, omega = sqrt(k w), w the row's inverse
+    // effective mass with the bodies as they are now (0 when it is not active; unit: rad/s).
+    double joint_frequency(size_t c) const;
     // Over the active joints, the largest natural frequency omega = sqrt(k w) (w the largest row
     // inverse effective mass: the stiffest row) and the smallest (the softest row, which sets the
     // largest CFM); both 0 when none is active (unit: rad/s).
@@ -74,6 +83,9 @@ public:
     struct Snapshot;
     std::shared_ptr<Snapshot> save() const;
     void restore(const Snapshot& s);
+    // Sets every contact point's remembered impulses to zero: after a restore, the solver would
+    // otherwise start (warm start) from impulses of a step that was undone.
+    void forget_contact_impulses();
 
     // Constraints, in model order.
     size_t constraint_count() const;

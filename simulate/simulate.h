@@ -6,7 +6,7 @@
 //     [save state]  step  ->  find overloaded constraints  ->  break policy picks
 //     -> [rollback: restore, remove them, step again | remove them]  ->  energize each
 //   record the frame's poses and energy books
-// With substeps = "auto" the substeps of a frame are blocks of at most 1/240 s, each run as one
+// With substeps = "auto" the substeps of a frame are blocks of at most 1/480 s, each run as one
 // probe step or, when the probe's joints carry kAutoRefineLoad of their strength or more, as the
 // fine steps the stiffest joint needs (below, "The automatic step").
 #pragma once
@@ -121,17 +121,24 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
 // duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);
 
-// The automatic step (substeps = "auto"). Each frame is cut into blocks of at most
-// kAutoBlock. A block starts as one probe step of its whole length; the probe is kept when every
-// active joint carries less than kAutoRefineLoad of its strength, and otherwise undone (the
-// bodies' state restored) and the block re-run in n equal steps, n the least power of two with
-// omega h <= kAutoOmegaH for the stiffest joint row (omega = sqrt(k w)), at most kAutoMaxSplit,
-// and with iterative joints no more than keeps every row's CFM within max_cfm. Blocks stay fine
-// until one ends with no break and every joint below kAutoCalmLoad. A joint's force in a step
-// that treats it as rigid is m v / h (docs/physics.md section 7): an impact or a joint nearing its
-// strength shows in the probe as a load over kAutoRefineLoad, and breaks only ever come from fine
-// steps or from probes whose loads stayed under it.
-inline constexpr double kAutoBlock = 1.0 / 240;   // (unit: s)
+// The automatic step (substeps = "auto"; docs/physics.md, "The automatic step"). Each frame is
+// cut into blocks of at most kAutoBlock. A block starts as one probe step of its whole length.
+// The probe is undone (the bodies' state restored, the contacts' remembered impulses forgotten)
+// when a joint's load reaches kAutoRefineLoad of its strength, the load being the largest of
+//   - the force the solver applied;
+//   - the spring's own force k |d| from the stretch (a joint between two dynamic pieces): an
+//     unconverged solve applies less than the stretch holds;
+//   - omega h |df|, df the change of its force in the probe: a load that comes within a step that
+//     treats the joint as rigid (omega h > 1) stands for a velocity jump whose real peak force is
+//     omega h times larger (docs/physics.md section 7);
+//   - for a piece that the probe leaves in contact, v sqrt(k / w), v the speed at which it
+//     approaches what it touches (BulletWorld::approach_load): an impact that begins at the end
+//     of the probe, where Bullet finds the contact only in the next step.
+// An undone block is re-run in n equal steps, n the least power of two with omega h <= kAutoOmegaH
+// for the stiffest joint row (omega = sqrt(k w)), at most kAutoMaxSplit, and with iterative
+// joints no more than keeps every row's CFM within max_cfm. Blocks stay fine until one ends with
+// no break and every joint's force under kAutoCalmLoad of its strength.
+inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
 inline constexpr double kAutoRefineLoad = 0.5;    // of a joint's strength
 inline constexpr double kAutoCalmLoad = 0.25;     // of a joint's strength
 inline constexpr double kAutoOmegaH = 2.5;        // (unit: 1)
