@@ -46,6 +46,28 @@ TEST(AutoStep, ThePlateReproducesItsFixedStepInAnEighthOfTheSteps) {
     for (const BreakRecord& b : a.breaks) EXPECT_LT(b.step, kAutoBlock * 0.99) << "break at " << b.time;
 }
 
+// The step's choices depend only on the state: two runs give the same poses and breaks.
+TEST(AutoStep, TwoRunsGiveTheSamePosesAndBreaks) {
+    const Shot shot = asset("plate");
+    const Model model = prescore_shot(shot, nullptr);
+    SimulationInput in = input_of(shot, 1.0, 0.4);
+    in.simulate.auto_substeps = true;
+    const SimulationResult a = simulate(model, in, "plate"), b = simulate(model, in, "plate");
+    ASSERT_FALSE(a.breaks.empty());
+    EXPECT_EQ(a.steps, b.steps);
+    EXPECT_EQ(a.rejected_steps, b.rejected_steps);
+    ASSERT_EQ(a.breaks.size(), b.breaks.size());
+    for (size_t i = 0; i < a.breaks.size(); ++i) {
+        EXPECT_EQ(a.breaks[i].time, b.breaks[i].time);
+        EXPECT_EQ(a.breaks[i].constraint, b.breaks[i].constraint);
+    }
+    ASSERT_EQ(a.trajectory.poses.size(), b.trajectory.poses.size());
+    for (size_t i = 0; i < a.trajectory.poses.size(); ++i) {
+        EXPECT_EQ(a.trajectory.poses[i].position, b.trajectory.poses[i].position);
+        EXPECT_EQ(a.trajectory.poses[i].rotation.coeffs(), b.trajectory.poses[i].rotation.coeffs());
+    }
+}
+
 // The porcelain chain pulled apart: eleven joints in series reach the strength when the ends have
 // moved 11 F / k apart; the converged answer is 0.3086 s (docs/physics.md section 5b). The fixed
 // step's 20 iterations leave the chain too soft (0.3183 s); the automatic step's probes count the
