@@ -182,6 +182,20 @@ bool section_sweeps(const Options& opt, Headlines& h) {
                 if (scene == "rig" && k.name == "substeps") h.rig_substeps_error.push_back({v, err});
             }
         }
+        if (opt.precision_only) continue;
+        // The automatic step (substeps = "auto", docs/physics.md section 7a): one point on the same
+        // cost/error chart, knob "auto_step", value 1.
+        StudyCase c = scene_case(scene, {});
+        c.input.simulate.auto_substeps = true;
+        const RunOutcome o = run_timed(c, opt.quick ? 1 : 3);
+        const double tb = first_break(o.sim);
+        const double err = o.refused ? NAN
+                                     : trajectory_error(c.model, o.sim.trajectory, ref.c.model, ref.o.sim.trajectory, until);
+        csv.row(fmt::format("{},{},auto_step,1,0,{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", precision_name(), scene,
+                            o.refused, o.sim.complete, d(o.wall_seconds), d(o.wall_seconds / until),
+                            d(o.cpu_seconds / until), o.sim.steps, c.model.pieces.size(), c.model.constraints.size(),
+                            collision_parts(c.model), c.model.mesh.tets.size(), o.sim.breaks.size(), d(tb),
+                            d(std::abs(tb - t_ref)), d(err), d(energy_identity_error(o.sim, false))));
     }
     csv.close();
     return true;
