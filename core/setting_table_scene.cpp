@@ -410,7 +410,7 @@ SettingsSection simulate_section() {
              preset_overridable(boolean("exact_energy", at(&Shot::simulate, &SimulateSettings::exact_energy),
                                         "solve the kick impulses for the bodies' motion so that the gained kinetic "
                                         "energy is exactly alpha E in the pair's frame (set by method)")
-                                    .flag("--exact-energy", FlagKind::SetsTrue),
+                                    .flag("--no-exact-energy", FlagKind::SetsFalse),
                                 "method"),
              seed("seed", at(&Shot::simulate, &SimulateSettings::seed), "seed of the random kick directions").flag("--seed"),
              number("max_cfm", "1", at(&Shot::simulate, &SimulateSettings::max_cfm), kMaxCfmLimits,
