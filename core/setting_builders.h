@@ -65,7 +65,7 @@ BasicSetting<Root> with_value_json(BasicSetting<Root> s, const char* key, Get ge
 
 template <class Root = Shot, class Get>
 BasicSetting<Root> number(const char* key, const char* unit, Get get, Limits limits, const char* help) {
-    BasicSetting<Root> s{key, unit, short_number(get(defaults<Root>())), range_of(limits), help, {}, {}};
+    BasicSetting<Root> s{key, unit, short_number(get(defaults<Root>())), range_of(limits), help, {}, {}, {}, {}, {}, true};
     s.read = [key, get, limits](TomlSection& t, Root& shot) { t.number(key, get(shot), limits); };
     s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.number(key); };
     return with_value_json(s, key, get);
@@ -82,7 +82,7 @@ void whole_json(BasicSetting<Root>& s, const char* key, Get get) {
 
 template <class Root = Shot, class Get>
 BasicSetting<Root> whole(const char* key, const char* unit, Get get, Limits limits, const char* help) {
-    BasicSetting<Root> s{key, unit, std::to_string(get(defaults<Root>())), range_of(limits), help, {}, {}};
+    BasicSetting<Root> s{key, unit, std::to_string(get(defaults<Root>())), range_of(limits), help, {}, {}, {}, {}, {}, true};
     s.read = [key, get, limits](TomlSection& t, Root& shot) { t.integer(key, get(shot), limits); };
     whole_json(s, key, get);
     return with_value_json(s, key, get);
@@ -90,7 +90,7 @@ BasicSetting<Root> whole(const char* key, const char* unit, Get get, Limits limi
 
 template <class Root = Shot, class Get>
 BasicSetting<Root> seed(const char* key, Get get, const char* help) {
-    BasicSetting<Root> s{key, "", std::to_string(get(defaults<Root>())), ">= 0", help, {}, {}};
+    BasicSetting<Root> s{key, "", std::to_string(get(defaults<Root>())), ">= 0", help, {}, {}, {}, {}, {}, true};
     s.read = [key, get](TomlSection& t, Root& shot) { t.integer(key, get(shot)); };
     whole_json(s, key, get);
     return with_value_json(s, key, get);
@@ -98,7 +98,7 @@ BasicSetting<Root> seed(const char* key, Get get, const char* help) {
 
 template <class Root = Shot, class Get>
 BasicSetting<Root> boolean(const char* key, Get get, const char* help) {
-    BasicSetting<Root> s{key, "", get(defaults<Root>()) ? "true" : "false", "true, false", help, {}, {}};
+    BasicSetting<Root> s{key, "", get(defaults<Root>()) ? "true" : "false", "true, false", help, {}, {}, {}, {}, {}, true};
     s.read = [key, get](TomlSection& t, Root& shot) { t.boolean(key, get(shot)); };
     s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.boolean(key); };
     return with_value_json(s, key, get);
@@ -107,7 +107,7 @@ BasicSetting<Root> boolean(const char* key, Get get, const char* help) {
 // A string (a name, a file).
 template <class Root = Shot, class Get>
 BasicSetting<Root> text(const char* key, Get get, const char* help) {
-    BasicSetting<Root> s{key, "", fmt::format("\"{}\"", get(defaults<Root>())), "", help, {}, {}};
+    BasicSetting<Root> s{key, "", fmt::format("\"{}\"", get(defaults<Root>())), "", help, {}, {}, {}, {}, {}, true};
     s.read = [key, get](TomlSection& t, Root& root) { t.text(key, get(root)); };
     s.read_json = [key, get](JsonObject& o, Root& root) { get(root) = o.text(key); };
     return with_value_json(s, key, get);
@@ -125,7 +125,7 @@ BasicSetting<Root> choice(const char* key, Get get, std::vector<std::pair<const 
         quoted.push_back(fmt::format("\"{}\"", name));
         if (value == get(defaults<Root>())) def = quoted.back();
     }
-    BasicSetting<Root> s{key, "", def, fmt::format("{}", fmt::join(plain, ", ")), help, {}, {}};
+    BasicSetting<Root> s{key, "", def, fmt::format("{}", fmt::join(plain, ", ")), help, {}, {}, {}, {}, {}, true};
     s.read = [=](TomlSection& t, Root& shot) {
         std::string text;
         if (!t.text(key, text)) return;
@@ -165,7 +165,7 @@ enum class Unset { Auto, Null, Omitted };
 template <class Root = Shot, class Get>
 BasicSetting<Root> optional_number(const char* key, const char* unit, Get get, Limits limits, const char* help,
                         const char* unset_text, Unset unset_json) {
-    BasicSetting<Root> s{key, unit, unset_text, range_of(limits) + ", or \"auto\"", help, {}, {}};
+    BasicSetting<Root> s{key, unit, unset_text, range_of(limits) + ", or \"auto\"", help, {}, {}, {}, {}, {}, true};
     s.read = [key, get, limits](TomlSection& t, Root& shot) {
         const toml::node* n = t.node(key);
         if (n && n->is_string() && n->as_string()->get() == "auto") {
@@ -191,7 +191,7 @@ template <class Root = Shot, class Get>
 BasicSetting<Root> vec3(const char* key, const char* unit, Get get, Limits limits, const char* example, const char* help) {
     const Vec3 d = get(defaults<Root>());
     BasicSetting<Root> s{key, unit, fmt::format("[{}, {}, {}]", short_number(d.x()), short_number(d.y()), short_number(d.z())),
-              "each " + range_of(limits), help, {}, {}};
+              "each " + range_of(limits), help, {}, {}, {}, {}, {}, true};
     s.read = [key, get, limits, example](TomlSection& t, Root& shot) {
         read_numbers(t, key, get(shot).data(), 3, limits, example);
     };
@@ -212,7 +212,7 @@ struct not_deduced {
 template <class Root = Shot>
 BasicSetting<Root> custom(const char* key, const char* unit, const char* def, const char* range, const char* help,
                           std::function<void(TomlSection&, typename not_deduced<Root>::type&)> read) {
-    BasicSetting<Root> s{key, unit, def, range, help, {}, std::move(read)};
+    BasicSetting<Root> s{key, unit, def, range, help, {}, std::move(read), {}, {}, {}, true};
     return s;
 }
 
@@ -220,7 +220,7 @@ BasicSetting<Root> custom(const char* key, const char* unit, const char* def, co
 template <class Root>
 BasicSetting<Root> key_frames(std::vector<KeyFrame> Root::*member, const char* unit, const char* def,
                               const char* range, const char* help) {
-    BasicSetting<Root> s{"keys", unit, def, range, help, {}, {}};
+    BasicSetting<Root> s{"keys", unit, def, range, help, {}, {}, {}, {}, {}, true};
     s.read = [member](TomlSection& t, Root& root) { read_keys(t, root.*member); };
     s.write = [member](const Root& root, nlohmann::ordered_json& j) { j["keys"] = keys_json(root.*member); };
     s.read_json = [member](JsonObject& o, Root& root) { root.*member = keys_from_json(o, "keys"); };
@@ -241,7 +241,7 @@ BasicSetting<Root> linear_colour(std::array<float, 3> Root::*member, const char*
     const std::array<float, 3>& d = defaults<Root>().*member;
     BasicSetting<Root> s{"colour", "linear RGB",
                          fmt::format("[{}, {}, {}]", short_number(d[0]), short_number(d[1]), short_number(d[2])),
-                         "each 0 to 1", help, {}, {}};
+                         "each 0 to 1", help, {}, {}, {}, {}, {}, true};
     s.read = [member](TomlSection& t, Root& root) {
         Vec3 c;
         if (!read_numbers(t, "colour", c.data(), 3, Limits{0, 1, "(linear RGB)"}, "[0.8, 0.2, 0.1]")) return;

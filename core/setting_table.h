@@ -139,11 +139,11 @@ struct SettingsSection {
     std::vector<Setting> settings;
     // Keys the table does not hold (the arrays of tables, each entry read by its own table) and
     // checks that join several keys; runs after the table's keys, before the unknown-key check.
-    std::function<void(TomlSection&, Shot&)> read_extra;
+    std::function<void(TomlSection&, Shot&)> read_extra = {};
     // Writes what read_extra reads, after the table's keys.
-    std::function<void(const Shot&, nlohmann::ordered_json&)> write_extra;
+    std::function<void(const Shot&, nlohmann::ordered_json&)> write_extra = {};
     // Reads back what write_extra wrote (read_settings_json), for a section that is read back.
-    std::function<void(JsonObject&, Shot&)> read_json_extra;
+    std::function<void(JsonObject&, Shot&)> read_json_extra = {};
 };
 
 // The keys of one entry of [[scene.colliders]] and [[scene.kinematic]] (read by

@@ -40,10 +40,6 @@ bool numbers(TomlSection& s, const char* key, double* out, size_t n, const Limit
     return true;
 }
 
-bool vec3(TomlSection& s, const char* key, Vec3& out, const Limits& limits, const char* example) {
-    return numbers(s, key, out.data(), 3, limits, example);
-}
-
 std::string beside_shot(const std::string& path, const std::string& shot_path) {
     std::filesystem::path p(path);
     if (p.is_relative()) return (std::filesystem::path(shot_path).parent_path() / p).lexically_normal().string();
