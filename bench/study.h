@@ -6,6 +6,8 @@
 // that the study does not shift when the shots are tuned.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -107,6 +109,41 @@ double stiffness_identity_error(const StudyCase& c, const SimulationResult& r);
 enum class Stability { Refused, NaN, EnergyGrowth, Cascade, FlyApart, Stable };
 const char* to_string(Stability s);
 Stability classify(const StudyCase& c, const RunOutcome& o, double* energy_growth);
+// The largest number of breaks inside any window of `window` seconds (breaks in time order).
+inline size_t most_breaks_within(const std::vector<BreakRecord>& breaks, double window) {
+    size_t best = 0, first = 0;
+    for (size_t i = 0; i < breaks.size(); ++i) {
+        while (breaks[i].time - breaks[first].time > window + 1e-12) ++first;
+        best = std::max(best, i - first + 1);
+    }
+    return best;
+}
+
+// The energy test of classify, inline so that tests built without the study's library share it:
+// kinetic + potential + stored may grow by what the breaks injected, plus 10% of the larger of
+// that and E_ref = the work gravity does on the dynamic pieces over 10 cm. `largest` is the
+// largest growth over the run (unit: J); `grew`: it passed its allowance somewhere.
+struct EnergyGrowthTest {
+    double largest = -INFINITY;
+    bool grew = false;
+};
+inline EnergyGrowthTest energy_growth_test(const StudyCase& c, const SimulationResult& r) {
+    double mass = 0;
+    std::vector<char> driven(c.model.pieces.size(), 0);
+    for (const PieceDriveSettings& d : c.input.object.driven) driven[d.piece] = 1;
+    for (size_t p = 0; p < c.model.pieces.size(); ++p)
+        if (!driven[p]) mass += c.model.pieces[p].mass.mass;
+    const double e_ref = mass * c.input.scene.gravity.norm() * 0.1;
+    const EnergySample& e0 = r.energy.front();
+    const double start = e0.kinetic + e0.potential + e0.stored;
+    EnergyGrowthTest out;
+    for (const EnergySample& e : r.energy) {
+        const double g = e.kinetic + e.potential + e.stored - start - e.injected;
+        out.largest = std::max(out.largest, g);
+        out.grew = out.grew || g > 0.1 * std::max(e.injected, e_ref);
+    }
+    return out;
+}
 
 // ---- output ------------------------------------------------------------------------------
 

@@ -180,16 +180,6 @@ const char* to_string(Stability s) {
 
 namespace {
 
-// Largest number of breaks inside any window of `window` seconds.
-size_t most_breaks_within(const std::vector<BreakRecord>& breaks, double window) {
-    size_t best = 0, first = 0;
-    for (size_t i = 0; i < breaks.size(); ++i) {
-        while (breaks[i].time - breaks[first].time > window + 1e-12) ++first;
-        best = std::max(best, i - first + 1);
-    }
-    return best;
-}
-
 // Largest gap between a constraint's two pivots (each carried by its piece) before the first break.
 double largest_gap_before_break(const StudyCase& c, const SimulationResult& r) {
     const Trajectory& t = r.trajectory;
@@ -212,25 +202,9 @@ Stability classify(const StudyCase& c, const RunOutcome& o, double* energy_growt
     const SimulationResult& r = o.sim;
     // A run that stopped: a NaN, or (simulate/instability.h) kinetic energy beyond the scene's budget.
     if (!r.complete) return r.stop_reason.find("NaN") != std::string::npos ? Stability::NaN : Stability::EnergyGrowth;
-    // Energy: kinetic + potential + stored may grow by what the breaks injected, plus 10% of the
-    // larger of that and E_ref = the work gravity does on the dynamic pieces over 10 cm.
-    double mass = 0;
-    std::vector<char> driven(c.model.pieces.size(), 0);
-    for (const PieceDriveSettings& d : c.input.object.driven) driven[d.piece] = 1;
-    for (size_t p = 0; p < c.model.pieces.size(); ++p)
-        if (!driven[p]) mass += c.model.pieces[p].mass.mass;
-    const double e_ref = mass * c.input.scene.gravity.norm() * 0.1;
-    const EnergySample& e0 = r.energy.front();
-    const double start = e0.kinetic + e0.potential + e0.stored;
-    double growth = -INFINITY;
-    bool grew = false;
-    for (const EnergySample& e : r.energy) {
-        const double g = e.kinetic + e.potential + e.stored - start - e.injected;
-        growth = std::max(growth, g);
-        grew = grew || g > 0.1 * std::max(e.injected, e_ref);
-    }
-    *energy_growth = growth;
-    if (grew) return Stability::EnergyGrowth;
+    const EnergyGrowthTest energy = energy_growth_test(c, r);
+    *energy_growth = energy.largest;
+    if (energy.grew) return Stability::EnergyGrowth;
     if (2 * most_breaks_within(r.breaks, 0.1) > c.model.constraints.size()) return Stability::Cascade;
     if (largest_gap_before_break(c, r) > 1e-3) return Stability::FlyApart;
     return Stability::Stable;

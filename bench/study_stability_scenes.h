@@ -243,15 +243,6 @@ struct Verdict {
 
 inline Vec3 centre(const Trajectory& t, uint32_t f, uint32_t piece) { return t.pose(f, piece).position.cast<double>(); }
 
-inline size_t most_breaks_within_window(const std::vector<BreakRecord>& breaks, double window) {
-    size_t best = 0, first = 0;
-    for (size_t i = 0; i < breaks.size(); ++i) {
-        while (breaks[i].time - breaks[first].time > window + 1e-12) ++first;
-        best = std::max(best, i - first + 1);
-    }
-    return best;
-}
-
 // The hanging chains: joint j's static stretch, the weight below it over its stiffness (unit: m);
 // 0 in the other scenes.
 inline double static_stretch(const StudyCase& c, uint32_t j) {
@@ -268,20 +259,8 @@ inline double static_stretch(const StudyCase& c, uint32_t j) {
 inline Stability map_class(const StudyCase& c, const SimulationResult& r, bool refused, bool energy_test) {
     if (refused) return Stability::Refused;
     if (!r.complete) return r.stop_reason.find("NaN") != std::string::npos ? Stability::NaN : Stability::EnergyGrowth;
-    if (energy_test) {
-        double mass = 0;
-        std::vector<char> driven(c.model.pieces.size(), 0);
-        for (const PieceDriveSettings& d : c.input.object.driven) driven[d.piece] = 1;
-        for (size_t p = 0; p < c.model.pieces.size(); ++p)
-            if (!driven[p]) mass += c.model.pieces[p].mass.mass;
-        const double e_ref = mass * c.input.scene.gravity.norm() * 0.1;
-        const EnergySample& e0 = r.energy.front();
-        const double start = e0.kinetic + e0.potential + e0.stored;
-        for (const EnergySample& e : r.energy)
-            if (e.kinetic + e.potential + e.stored - start - e.injected > 0.1 * std::max(e.injected, e_ref))
-                return Stability::EnergyGrowth;
-    }
-    if (2 * most_breaks_within_window(r.breaks, 0.1) > c.model.constraints.size()) return Stability::Cascade;
+    if (energy_test && energy_growth_test(c, r).grew) return Stability::EnergyGrowth;
+    if (2 * most_breaks_within(r.breaks, 0.1) > c.model.constraints.size()) return Stability::Cascade;
     const Trajectory& t = r.trajectory;
     const double t_break = r.breaks.empty() ? INFINITY : r.breaks.front().time;
     for (uint32_t f = 0; f < t.frames() && f / t.fps < t_break - 1e-12; ++f)

@@ -14,31 +14,34 @@ namespace {
 using ojson = nlohmann::ordered_json;
 
 // duration: seconds, or "auto" (until the pieces rest, at most max_duration).
+// A key that takes a number or "auto": "auto" sets `is_auto`; a number (read by `read_number`,
+// with its limits) clears it, replacing an "auto" given before (a flag over the shot). `what`
+// names the number in the message ("a number of seconds"), `fix` shows both forms.
+template <class ReadNumber>
+void read_number_or_auto(TomlSection& s, const char* key, bool& is_auto, const char* what, const char* fix,
+                         ReadNumber read_number) {
+    const toml::node* n = s.node(key);
+    if (n && n->is_string()) {
+        if (n->as_string()->get() != "auto")
+            s.fail(n, fmt::format("{} must be {} or \"auto\"", s.key_name(key), what), fix);
+        is_auto = true;
+    } else if (read_number()) {
+        is_auto = false;
+    }
+}
+
 void read_duration(TomlSection& s, Shot& shot) {
     SimulateSettings& simulate = shot.simulate;
-    const toml::node* duration = s.node("duration");
-    if (duration && duration->is_string()) {
-        if (duration->as_string()->get() != "auto")
-            s.fail(duration, fmt::format("{} must be a number of seconds or \"auto\"", s.key_name("duration")),
-                   "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)");
-        simulate.auto_duration = true;
-    } else if (s.number("duration", simulate.duration, kDurationLimits)) {
-        simulate.auto_duration = false;  // seconds replace an "auto" given before (a flag over the shot)
-    }
+    read_number_or_auto(s, "duration", simulate.auto_duration, "a number of seconds",
+                        "duration = 4.0, or duration = \"auto\" (until the pieces rest, at most max_duration)",
+                        [&] { return s.number("duration", simulate.duration, kDurationLimits); });
 }
 
 void read_substeps(TomlSection& s, Shot& shot) {
     SimulateSettings& simulate = shot.simulate;
-    const toml::node* substeps = s.node("substeps");
-    if (substeps && substeps->is_string()) {
-        if (substeps->as_string()->get() != "auto")
-            s.fail(substeps, fmt::format("{} must be a whole number of steps per frame or \"auto\"",
-                                         s.key_name("substeps")),
-                   "substeps = 8, or substeps = \"auto\" (the step chosen as the run goes)");
-        simulate.auto_substeps = true;
-    } else if (s.integer("substeps", simulate.substeps, kSubstepsLimits)) {
-        simulate.auto_substeps = false;  // a number replaces an "auto" given before (a flag over the shot)
-    }
+    read_number_or_auto(s, "substeps", simulate.auto_substeps, "a whole number of steps per frame",
+                        "substeps = 8, or substeps = \"auto\" (the step chosen as the run goes)",
+                        [&] { return s.integer("substeps", simulate.substeps, kSubstepsLimits); });
 }
 
 // The keys every body of the scene has, between its shape keys and its colour.
