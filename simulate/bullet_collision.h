@@ -6,8 +6,9 @@
 
 #include <algorithm>
 #include <limits>
-#include <set>
+#include <unordered_set>
 #include <utility>
+#include <vector>
 
 namespace shatter {
 
@@ -18,10 +19,47 @@ namespace shatter {
 class PieceDispatcher : public btCollisionDispatcher {
 public:
     using btCollisionDispatcher::btCollisionDispatcher;
-    std::set<std::pair<int, int>> ignored;
+    // The ignored pairs of pieces, looked up for every pair of every step: a hash set, and per
+    // piece how many ignored pairs it is in, so that most pairs are passed without a lookup.
+    class Ignored {
+    public:
+        void insert(int a, int b) {
+            if (!pairs_.insert(key(a, b)).second) return;
+            for (int p : {a, b}) {
+                if (size_t(p) >= count_.size()) count_.resize(size_t(p) + 1, 0);
+                ++count_[size_t(p)];
+            }
+        }
+        bool contains(int a, int b) const {
+            return !pairs_.empty() && size_t(a) < count_.size() && size_t(b) < count_.size() &&
+                   count_[size_t(a)] && count_[size_t(b)] && pairs_.count(key(a, b));
+        }
+        // Drops the pairs for which `parted(a, b)` holds (a < b).
+        template <class Parted>
+        void release(Parted parted) {
+            for (auto it = pairs_.begin(); it != pairs_.end();) {
+                const int a = int(*it >> 32), b = int(*it & 0xffffffffu);
+                if (!parted(a, b)) {
+                    ++it;
+                    continue;
+                }
+                --count_[size_t(a)];
+                --count_[size_t(b)];
+                it = pairs_.erase(it);
+            }
+        }
+
+    private:
+        static uint64_t key(int a, int b) {
+            const auto [lo, hi] = std::minmax(a, b);
+            return uint64_t(uint32_t(lo)) << 32 | uint32_t(hi);
+        }
+        std::unordered_set<uint64_t> pairs_;  // (smaller piece, larger piece)
+        std::vector<uint32_t> count_;         // per piece
+    };
+    Ignored ignored;
     bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
-        if (!ignored.empty() && a->getUserIndex() >= 0 && b->getUserIndex() >= 0 &&
-            ignored.count(std::minmax(a->getUserIndex(), b->getUserIndex())))
+        if (a->getUserIndex() >= 0 && b->getUserIndex() >= 0 && ignored.contains(a->getUserIndex(), b->getUserIndex()))
             return false;
         return btCollisionDispatcher::needsCollision(a, b);
     }

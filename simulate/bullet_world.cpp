@@ -171,7 +171,7 @@ void BulletWorld::ignore_initial_overlaps() {
             if (!a->checkCollideWith(b)) continue;  // joined: never collide while joined
             ContactFound contact(1e-4);
             m.world.contactPairTest(a, b, contact);
-            if (contact.found()) m.dispatcher.ignored.insert({int(i), int(j)});
+            if (contact.found()) m.dispatcher.ignored.insert(int(i), int(j));
         }
 }
 
@@ -196,14 +196,14 @@ btScalar least_extent(const btVector3& lo_a, const btVector3& hi_a, const btVect
 // rest, and releasing them at the first hair would make them collide at that edge every step.
 void BulletWorld::release_parted_pairs() {
     Impl& m = *impl_;
-    for (auto it = m.dispatcher.ignored.begin(); it != m.dispatcher.ignored.end();) {
+    m.dispatcher.ignored.release([&m](int a, int b) {
         btVector3 lo_a, hi_a, lo_b, hi_b;
-        m.pieces[size_t(it->first)].body->getAabb(lo_a, hi_a);
-        m.pieces[size_t(it->second)].body->getAabb(lo_b, hi_b);
+        m.pieces[size_t(a)].body->getAabb(lo_a, hi_a);
+        m.pieces[size_t(b)].body->getAabb(lo_b, hi_b);
         const btScalar gap = btScalar(0.05) * least_extent(lo_a, hi_a, lo_b, hi_b);
         const btVector3 pad(gap, gap, gap);
-        it = TestAabbAgainstAabb2(lo_a - pad, hi_a + pad, lo_b, hi_b) ? std::next(it) : m.dispatcher.ignored.erase(it);
-    }
+        return !TestAabbAgainstAabb2(lo_a - pad, hi_a + pad, lo_b, hi_b);
+    });
 }
 
 BulletWorld::~BulletWorld() {
@@ -536,7 +536,7 @@ void BulletWorld::remove_constraint(size_t c) {
     a->getAabb(lo_a, hi_a);
     b->getAabb(lo_b, hi_b);
     if (contact.deepest < -kDeepOverlap * double(least_extent(lo_a, hi_a, lo_b, hi_b)))
-        m.dispatcher.ignored.insert(std::minmax(int(j.piece_a), int(j.piece_b)));
+        m.dispatcher.ignored.insert(int(j.piece_a), int(j.piece_b));
 }
 
 std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) const {
