@@ -5,18 +5,31 @@
 // from the pieces of each frame and smoothed over the whole trajectory, computed once before
 // any frame is drawn:
 //
-//   1. per frame, the box of the pieces' balls (centre of mass plus radius), the props' balls,
-//      the finite static colliders and the ground point under the pieces (so the ground stays in
-//      view); when at most a tenth of the pieces, the farthest from the median, more than double
-//      the box's diagonal (a piece flying off), the box is taken without them;
+//   1. per frame, the box of the balls to frame: the pieces' balls (centre of mass plus radius),
+//      the props' balls, the finite static colliders, and the ground below the pieces' box down
+//      to kGroundReach object sizes (so the ground comes into view before the landing, without
+//      framing the whole drop). Pieces may be let go: a piece outside the main mass (main_mass:
+//      the pieces nearest the mass-weighted median holding 90% of the mass) whose ball lies more
+//      than kLetGo of the main mass's box diagonal outside that box, at most a tenth of the
+//      pieces, the farthest first; never in the first frame;
 //   2. the target: the box centres smoothed with a Hann window of +-kFollowWindow (symmetric:
-//      looks ahead as far as back, so the camera starts to move before the landing);
+//      looks ahead as far as back, so the camera starts to slow before the landing);
 //   3. the distance each frame needs so that those balls fall inside the inner 90% of the image
-//      from the smoothed target; then the largest need within +-kFollowWindow, smoothed with the
-//      same window. Every weight of the window lies within the span of the maximum, so the
-//      smoothed distance is never less than the frame's need: the kept balls of every frame are
-//      in view, and the path has no jitter (a frame's camera depends on the whole trajectory, not
-//      on the range rendered).
+//      from the smoothed target, and at least the distance at which the ground seen at the
+//      bottom edge's middle lies within kGroundSeen of where the ground begins to fade (a
+//      narrow field of view would otherwise show only faded ground behind a high object); then
+//      the largest need within +-kFollowWindow, smoothed with the same window. Every weight of
+//      the window lies within the span of the maximum, so the smoothed distance is never less
+//      than the frame's need: the kept balls of every frame are in view (every piece in the
+//      first frame, at least 90% of them in every frame), and the path has no jitter (a frame's
+//      camera depends on the whole trajectory, not on the range rendered).
+//
+// Earlier the ground point directly under the pieces was framed in every frame, so that a 0.2 m
+// object dropped from 1.5 m was framed with the whole drop below it (about a tenth of the image);
+// seen 22 degrees from above, the ground shows behind the object anyway, so only the ground
+// near the pieces is framed now, and the falling object fills a third of the image. The window
+// went from 0.5 s to 0.2 s: the landing's kink, smoothed, puts the target about
+// 0.15 x window x landing speed off the object, which the camera has to back off to hold.
 #pragma once
 
 #include <vector>
@@ -26,13 +39,18 @@
 
 namespace shatter {
 
-inline constexpr double kFollowWindow = 0.5;  // half-width of the smoothing window (unit: s)
+inline constexpr double kFollowWindow = 0.2;   // half-width of the smoothing window (unit: s)
+inline constexpr double kGroundReach = 0.5;    // the ground framed at most this far below the pieces (unit: object sizes)
+inline constexpr double kGroundSeen = 0.8;     // the ground at the bottom within this share of the fade's start
+inline constexpr double kLetGo = 0.5;          // a piece this far outside the main mass may leave (unit: its box's diagonals)
+inline constexpr double kLetGoShare = 0.1;     // ... at most this share of the pieces in a frame
 
 // What the follow camera is computed from: per frame, the balls to frame (pieces first, then
 // props and static colliders) and whether a piece is one of them may be dropped as an outlier.
 struct FollowInput {
     std::vector<std::vector<Ball>> frames;  // per frame: the pieces' balls, then the others
     uint32_t pieces = 0;                    // the first `pieces` balls of a frame are pieces
+    std::vector<double> mass;               // per piece (unit: kg); absent: all alike
     bool ground = true;
     double ground_height = 0;  // (unit: m)
     double fps = 30;           // (unit: frames/s)
@@ -49,6 +67,21 @@ std::vector<Camera> make_camera_path(const RenderScene& scene, const RenderSetti
 // it).
 bool ball_in_view(const Camera& c, const Ball& b, bool partly = false);
 
+// The main mass of a frame: the pieces nearest the mass-weighted median of their centres (per
+// axis; ties by index), taken until they hold kMainMass of the mass. Indices ascending.
+inline constexpr double kMainMass = 0.9;
+std::vector<uint32_t> main_mass(const std::vector<Ball>& pieces, const std::vector<double>& mass);
+
+// How large `balls` are on screen: the rectangle around their projections, its width as a
+// fraction of the image's width or its height of the image's height, whichever is larger
+// (1: the balls span the image from edge to edge; more when they reach beyond). A ball is taken
+// as its centre's projection plus its radius at its centre's depth.
+double screen_fill(const Camera& c, const std::vector<Ball>& balls);
+
+// Where the ray through the midpoint of the image's bottom edge meets the ground at height
+// `ground_height`, or false when it does not go down.
+bool ground_at_bottom(const Camera& c, double ground_height, Vec3* at);
+
 // What a render's cameras show, measured on the pieces' balls (centre of mass plus radius, so a
 // slight over-estimate of each piece) projected through the camera of each frame.
 struct CameraCoverage {
@@ -60,6 +93,16 @@ struct CameraCoverage {
     // turning with it) moves on screen by more than kStillPixels from one frame to the next
     // (camera motion included) (unit: s).
     double still_at_end = 0;
+    // How large the main mass is on screen (screen_fill of the corners of its pieces' boxes about
+    // their centres of mass, turning with them): per frame, its least and its median over the
+    // frames (unit: fraction of the image's width or height, whichever the mass fills more).
+    std::vector<double> fill;
+    double fill_least = 0, fill_median = 0;
+    uint32_t fill_least_frame = 0;
+    // Frames in which the ground is not seen at the bottom of the image: the ray through the
+    // bottom edge's midpoint meets no ground, or meets it where it has begun to fade (0 without
+    // a ground).
+    uint32_t frames_without_ground = 0;
 };
 inline constexpr double kStillPixels = 0.5;
 CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s);
