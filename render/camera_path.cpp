@@ -134,23 +134,6 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
             d = std::max(d, depth + (std::abs(q.dot(right)) + b.radius) / (kAutoFill * tan_h));
             d = std::max(d, depth + (std::abs(q.dot(up)) + b.radius) / (kAutoFill * tan_v));
         }
-        // The ground seen at the bottom of the image no farther than kGroundSeen of the way to
-        // where it begins to fade: the point the bottom edge's middle ray meets moves toward the
-        // eye as the camera backs off (A + B d, horizontally, from the fade's centre).
-        const Vec3 bottom = -dir - up * tan_v;
-        if (in.ground && bottom.y() < 0 && targets[f].y() > in.ground_height) {
-            const Eigen::Vector2d a =
-                Eigen::Vector2d(targets[f].x() - bounds.center().x(), targets[f].z() - bounds.center().z()) +
-                Eigen::Vector2d(bottom.x(), bottom.z()) * ((in.ground_height - targets[f].y()) / bottom.y());
-            const Eigen::Vector2d b = Eigen::Vector2d(dir.x(), dir.z()) - Eigen::Vector2d(bottom.x(), bottom.z()) * (dir.y() / bottom.y());
-            const double reach = kGroundSeen * kFadeStart * bounds.sizes().norm() / 2;
-            const double qa = b.squaredNorm(), qb = 2 * a.dot(b), qc = a.squaredNorm() - reach * reach;
-            const double disc = qb * qb - 4 * qa * qc;
-            if ((a + b * d).norm() > reach && qa > 0 && disc >= 0) {
-                const double nearest = (-qb - std::sqrt(disc)) / (2 * qa);
-                if (d < nearest) d = nearest;
-            }
-        }
         need[f] = d;
     }
     std::vector<double> widest(n, 0.0);
