@@ -158,10 +158,13 @@ std::vector<Camera> make_camera_path(const RenderScene& scene, const RenderSetti
     return follow_cameras(follow_input(scene), bounds, s);
 }
 
-std::vector<uint32_t> main_mass(const std::vector<Ball>& pieces, const std::vector<double>& mass) {
+std::vector<uint32_t> main_mass(const std::vector<Ball>& pieces, const std::vector<double>& given) {
     const uint32_t n = uint32_t(pieces.size());
     double total = 0;
-    for (uint32_t i = 0; i < n; ++i) total += mass[i];
+    for (uint32_t i = 0; i < n; ++i) total += given[i];
+    const bool alike = !(total > 0 && std::isfinite(total));  // then the pieces count alike
+    const std::vector<double> mass = alike ? std::vector<double>(n, 1.0) : given;
+    if (alike) total = n;
     std::vector<uint32_t> order(n);
     for (uint32_t i = 0; i < n; ++i) order[i] = i;
     // The weighted median per axis: the first centre, in order along the axis, by which half the

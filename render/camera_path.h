@@ -68,7 +68,8 @@ std::vector<Camera> make_camera_path(const RenderScene& scene, const RenderSetti
 bool ball_in_view(const Camera& c, const Ball& b, bool partly = false);
 
 // The main mass of a frame: the pieces nearest the mass-weighted median of their centres (per
-// axis; ties by index), taken until they hold kMainMass of the mass. Indices ascending.
+// axis; ties by index), taken until they hold kMainMass of the mass (of the count when the masses
+// do not add up to a positive total). Indices ascending.
 inline constexpr double kMainMass = 0.9;
 std::vector<uint32_t> main_mass(const std::vector<Ball>& pieces, const std::vector<double>& mass);
 

@@ -202,6 +202,8 @@ TEST(FollowCamera, ScreenFillAndMainMassMatchTheirGeometry) {
     EXPECT_EQ(main_mass(pieces, mass).size(), 10u);
     mass.back() = 5;  // now a third of the mass: the main mass must reach it
     EXPECT_EQ(main_mass(pieces, mass).size(), 11u);
+    // No masses to go by: by count, 10 of 11 reach 90%.
+    EXPECT_EQ(main_mass(pieces, std::vector<double>(11, 0.0)).size(), 10u);
 }
 
 TEST(FollowCamera, BallInViewMatchesTheFrustum) {
