@@ -49,19 +49,19 @@ int main(int argc, char** argv) {
         std::printf("frame,in_view,fill,target_x,target_y,target_z,distance\n");
         for (uint32_t f = 0; f < t.frames(); ++f) {
             const Camera& cam = cams[cams.size() > 1 ? f : 0];
-            std::printf("%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", f, c.in_view[f], c.fill[f], cam.target.x(), cam.target.y(),
-                        cam.target.z(), (cam.position - cam.target).norm());
+            std::printf("%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", f, c.in_view[f], c.fill[f], cam.target.x(),
+                        cam.target.y(), cam.target.z(), (cam.position - cam.target).norm());
         }
         std::printf("piece,mass_share,radius,last_x,last_y,last_z\n");
         for (uint32_t i = 0; i < t.pieces; ++i) {
             const Eigen::Vector3f p = t.pose(t.frames() - 1, i).position;
-            std::printf("%u,%.4f,%.3f,%.3f,%.3f,%.3f\n", i, model.pieces[i].mass.mass / total, piece_radius(model.pieces[i]),
-                        p.x(), p.y(), p.z());
+            std::printf("%u,%.4f,%.3f,%.3f,%.3f,%.3f\n", i, model.pieces[i].mass.mass / total,
+                        piece_radius(model.pieces[i]), p.x(), p.y(), p.z());
         }
     }
     std::printf("pieces %u, frames %u: in view first %.0f%%, least %.0f%% (frame %u); fill least %.0f%% (frame %u), "
                 "median %.0f%%; %u frames without ground; %.2f s still at the end\n",
-                t.pieces, t.frames(), 100 * c.first, 100 * c.least, c.least_frame, 100 * c.fill_least, c.fill_least_frame,
-                100 * c.fill_median, c.frames_without_ground, c.still_at_end);
+                t.pieces, t.frames(), 100 * c.first, 100 * c.least, c.least_frame, 100 * c.fill_least,
+                c.fill_least_frame, 100 * c.fill_median, c.frames_without_ground, c.still_at_end);
     return 0;
 }

@@ -27,14 +27,14 @@ std::vector<bool> kept_balls(const std::vector<Ball>& balls, const std::vector<d
     const size_t most = size_t(std::floor(kLetGoShare * pieces + 1e-9));
     if (most == 0) return keep;
     const std::vector<Ball> piece_balls(balls.begin(), balls.begin() + pieces);
-    std::vector<bool> main(pieces, false);
-    for (uint32_t i : main_mass(piece_balls, mass)) main[i] = true;
-    const Eigen::AlignedBox3d box = box_of(piece_balls, main);
+    std::vector<bool> in_main(pieces, false);
+    for (uint32_t i : main_mass(piece_balls, mass)) in_main[i] = true;
+    const Eigen::AlignedBox3d box = box_of(piece_balls, in_main);
     const double diagonal = box.sizes().norm();
     std::vector<std::pair<double, uint32_t>> far;  // (distance of the ball outside the box, piece)
     for (uint32_t i = 0; i < pieces; ++i) {
         const double gap = box.exteriorDistance(balls[i].centre) - balls[i].radius;
-        if (!main[i] && gap > kLetGo * diagonal) far.push_back({gap, i});
+        if (!in_main[i] && gap > kLetGo * diagonal) far.push_back({gap, i});
     }
     // Farthest first; ties by index, so the choice is the same on every machine.
     std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) {
@@ -108,7 +108,8 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
     std::vector<Vec3> centres(n);
     for (size_t f = 0; f < n; ++f) {
         const std::vector<Ball>& balls = in.frames[f];
-        const std::vector<bool> keep = f == 0 ? std::vector<bool>(balls.size(), true) : kept_balls(balls, mass, in.pieces);
+        const std::vector<bool> keep =
+            f == 0 ? std::vector<bool>(balls.size(), true) : kept_balls(balls, mass, in.pieces);
         for (size_t i = 0; i < balls.size(); ++i)
             if (keep[i]) framed[f].push_back(balls[i]);
         Eigen::AlignedBox3d box = box_of(balls, keep);
@@ -276,13 +277,14 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
         for (uint32_t i = 0; i < t.pieces; ++i) centres.push_back({t.pose(f, i).position.cast<double>(), radius[i]});
         for (uint32_t i : main_mass(centres, mass)) {
             const BodyPose& pose = t.pose(f, i);
-            for (const Vec3& q : corners[i])
-                corner_points.push_back({pose.rotation.cast<double>().normalized() * q + pose.position.cast<double>(), 0.0});
+            const Mat3 r = pose.rotation.cast<double>().normalized().toRotationMatrix();
+            for (const Vec3& q : corners[i]) corner_points.push_back({r * q + pose.position.cast<double>(), 0.0});
         }
         out.fill.push_back(screen_fill(camera(f), corner_points));
         Vec3 at;
-        if (scene.scene.ground && (!ground_at_bottom(camera(f), scene.scene.ground_height, &at) ||
-                                   Eigen::Vector2d(at.x() - bounds.center().x(), at.z() - bounds.center().z()).norm() > fade_start))
+        if (!scene.scene.ground) continue;
+        if (!ground_at_bottom(camera(f), scene.scene.ground_height, &at) ||
+            Eigen::Vector2d(at.x() - bounds.center().x(), at.z() - bounds.center().z()).norm() > fade_start)
             ++out.frames_without_ground;
     }
     if (!out.fill.empty()) {

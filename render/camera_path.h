@@ -16,21 +16,22 @@
 //      looks ahead as far as back, so the camera starts to slow before the landing);
 //   3. the distance each frame needs so that those balls fall inside the inner 90% of the image
 //      from the smoothed target; then the largest need within +-kFollowWindow, smoothed with the
-//      same window. Every weight of
-//      the window lies within the span of the maximum, so the smoothed distance is never less
-//      than the frame's need: the kept balls of every frame are in view (every piece in the
-//      first frame, at least 90% of them in every frame), and the path has no jitter (a frame's
-//      camera depends on the whole trajectory, not on the range rendered).
+//      same window. Every weight of the window lies within the span of the maximum, so the
+//      smoothed distance is never less than the frame's need: the kept balls of every frame are
+//      in view (every piece in the first frame, at least 90% of them in every frame), and the
+//      path has no jitter (a frame's camera depends on the whole trajectory, not on the range
+//      rendered).
 //
-// Earlier the ground point directly under the pieces was framed in every frame, so that a 0.2 m
-// object dropped from 1.5 m was framed with the whole drop below it (about a tenth of the image);
-// seen 22 degrees from above, the ground shows behind the object anyway, so only the ground
-// near the pieces is framed now, and the falling object fills a third of the image. The ground
-// at the bottom of the image is measured (camera_coverage), not enforced: at the default field
-// of view every frame measured has it; at 5 degrees on a fall that stays in place it lies a
-// quarter into the fade, and backing off until it did not took the camera from 3 m to 12 m. The window
-// went from 0.5 s to 0.2 s: the landing's kink, smoothed, puts the target about
-// 0.15 x window x landing speed off the object, which the camera has to back off to hold.
+// Why: framing the ground point directly under the pieces in every frame (as this camera first
+// did) framed a 0.2 m object dropped from 1.5 m with the whole drop below it, at about a tenth
+// of the image; seen 22 degrees from above, the ground shows behind a falling object anyway, so
+// only the ground near the pieces is framed, and the falling object fills about a third of the
+// image. The ground at the bottom of the image is measured (camera_coverage), not enforced: at
+// 35 to 40 degrees every frame measured has it; at 5 degrees, on a fall that stays in place, it
+// lies a fifth of the way into the fade, and backing off until it did not took the camera from
+// 3 m to 12 m. The window is 0.2 s (it was 0.5 s): smoothing the landing's kink puts the target
+// about 0.15 x window x landing speed off the object, which the camera has to back off to hold;
+// a shorter window stops harder (docs/render.md, "The follow camera").
 #pragma once
 
 #include <vector>
@@ -40,13 +41,16 @@
 
 namespace shatter {
 
-inline constexpr double kFollowWindow = 0.2;   // half-width of the smoothing window (unit: s)
-inline constexpr double kGroundReach = 0.5;    // the ground framed at most this far below the pieces (unit: object sizes)
-inline constexpr double kLetGo = 0.5;          // a piece this far outside the main mass may leave (unit: its box's diagonals)
-inline constexpr double kLetGoShare = 0.1;     // ... at most this share of the pieces in a frame
+inline constexpr double kFollowWindow = 0.2;  // half-width of the smoothing window (unit: s)
+// The ground is framed at most this far below the pieces (unit: the object's size, the largest
+// side of its pieces' box in the first frame).
+inline constexpr double kGroundReach = 0.5;
+// A piece this far outside the main mass's box may leave the frame (unit: that box's diagonal),
+// at most kLetGoShare of the pieces in a frame.
+inline constexpr double kLetGo = 0.5, kLetGoShare = 0.1;
 
 // What the follow camera is computed from: per frame, the balls to frame (pieces first, then
-// props and static colliders) and whether a piece is one of them may be dropped as an outlier.
+// props and static colliders), and the pieces' masses (which pieces make the main mass).
 struct FollowInput {
     std::vector<std::vector<Ball>> frames;  // per frame: the pieces' balls, then the others
     uint32_t pieces = 0;                    // the first `pieces` balls of a frame are pieces

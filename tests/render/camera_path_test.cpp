@@ -167,7 +167,8 @@ TEST(FollowCamera, ShakingPiecesDoNotShakeTheCamera) {
     for (auto& frame : in.frames)
         for (uint32_t i = 0; i < kPieces; ++i) {
             const double a = 2 * M_PI * i / kPieces;
-            frame[i].centre = Vec3(0.1 * std::cos(a), 0.03, 0.1 * std::sin(a)) + Vec3(noise(), noise(), noise()) * 0.002;
+            const Vec3 shake(noise(), noise(), noise());
+            frame[i].centre = Vec3(0.1 * std::cos(a), 0.03, 0.1 * std::sin(a)) + shake * 0.002;
         }
     const auto cams = follow_cameras(in, whole(in), hd());
     double target = 0, distance = 0, centre = 0;
@@ -175,7 +176,8 @@ TEST(FollowCamera, ShakingPiecesDoNotShakeTheCamera) {
         target = std::max(target, double((cams[f + 1].target - 2 * cams[f].target + cams[f - 1].target).norm()));
         auto d = [&](uint32_t g) { return double((cams[g].position - cams[g].target).norm()); };
         distance = std::max(distance, std::abs(d(f + 1) - 2 * d(f) + d(f - 1)));
-        centre = std::max(centre, (in.frames[f + 1][0].centre - 2 * in.frames[f][0].centre + in.frames[f - 1][0].centre).norm());
+        const Vec3 second = in.frames[f + 1][0].centre - 2 * in.frames[f][0].centre + in.frames[f - 1][0].centre;
+        centre = std::max(centre, second.norm());
     }
     EXPECT_LT(target, 0.1 * centre);
     EXPECT_LT(distance, 0.1 * centre);
