@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "render/camera_path.h"
+#include "scenes/render_test_scene.h"
 
 namespace shatter {
 namespace {
@@ -206,6 +207,37 @@ TEST(FollowCamera, ScreenFillAndMainMassMatchTheirGeometry) {
     EXPECT_EQ(main_mass(pieces, mass).size(), 11u);
     // No masses to go by: by count, 10 of 11 reach 90%.
     EXPECT_EQ(main_mass(pieces, std::vector<double>(11, 0.0)).size(), 10u);
+}
+
+// camera_coverage on the golden test scene (two pieces of a 10 cm cube flying apart beside a
+// sphere and a post): both pieces in view in every frame (none may be let go with two), the
+// ground at the bottom of every frame, and the fill as screen_fill of the pieces' box corners.
+TEST(FollowCamera, CoverageOfTheTestScene) {
+    testing_support::TestScene t;
+    const RenderScene scene = t.scene();
+    const RenderSettings s = testing_support::small_render_settings();
+    const CameraCoverage c = camera_coverage(scene, s);
+    ASSERT_EQ(c.in_view.size(), t.trajectory.frames());
+    EXPECT_EQ(c.first, 1.0);
+    EXPECT_EQ(c.least, 1.0);
+    EXPECT_EQ(c.frames_without_ground, 0u);
+    ASSERT_EQ(c.fill.size(), t.trajectory.frames());
+    EXPECT_LE(c.fill_least, c.fill_median);
+    // Frame 0: the two pieces at rest, their boxes about their centres of mass, unturned.
+    const std::vector<Camera> cams = make_camera_path(scene, s);
+    std::vector<Ball> corners;
+    for (uint32_t i = 0; i < t.trajectory.pieces; ++i) {
+        const Piece& piece = t.model.pieces[i];
+        Eigen::AlignedBox3d box;
+        for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
+        const BodyPose& pose = t.trajectory.pose(0, i);
+        const Eigen::Quaterniond r = pose.rotation.cast<double>().normalized();
+        for (int k = 0; k < 8; ++k)
+            corners.push_back({r * box.corner(Eigen::AlignedBox3d::CornerType(k)) + pose.position.cast<double>(), 0.0});
+    }
+    EXPECT_NEAR(c.fill[0], screen_fill(cams[0], corners), 1e-9);
+    std::printf("[ follow   ] test scene: fill %.3f at the least (frame %u), %.3f in the median frame\n", c.fill_least,
+                c.fill_least_frame, c.fill_median);
 }
 
 TEST(FollowCamera, BallInViewMatchesTheFrustum) {
