@@ -63,6 +63,22 @@ std::vector<T> smooth(const std::vector<T>& x, int w) {
 
 }  // namespace
 
+Eigen::AlignedBox3d piece_box(const Piece& piece) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
+    if (piece.render)
+        for (const Vec3& v : piece.render->vertices) box.extend(v - piece.mass.center);
+    if (box.isEmpty()) box.extend(Vec3::Zero());
+    return box;
+}
+
+double piece_ball_radius(const Piece& piece) {
+    double r = piece_radius(piece);
+    if (piece.render)
+        for (const Vec3& v : piece.render->vertices) r = std::max(r, (v - piece.mass.center).norm());
+    return r;
+}
+
 FollowInput follow_input(const RenderScene& scene) {
     FollowInput in;
     const Trajectory& t = *scene.trajectory;
@@ -70,9 +86,17 @@ FollowInput follow_input(const RenderScene& scene) {
     in.ground = scene.scene.ground;
     in.ground_height = scene.scene.ground_height;
     in.fps = t.fps;
-    for (uint32_t i = 0; i < t.pieces; ++i) in.mass.push_back(scene.model->pieces[i].mass.mass);
+    for (uint32_t i = 0; i < t.pieces; ++i) {
+        const Piece& piece = scene.model->pieces[i];
+        in.mass.push_back(piece.mass.mass);
+        in.boxes.push_back(piece_box(piece));
+    }
+    in.turns.resize(t.frames());
+    for (uint32_t f = 0; f < t.frames(); ++f)
+        for (uint32_t i = 0; i < t.pieces; ++i)
+            in.turns[f].push_back(t.pose(f, i).rotation.cast<double>().normalized());
     std::vector<double> radius(t.bodies(), 0.0);
-    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
+    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_ball_radius(scene.model->pieces[i]);
     for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(scene.scene.kinematic[k].shape);
     std::vector<Ball> statics;
     for (const ColliderSettings& c : scene.scene.colliders)
@@ -104,20 +128,42 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
         const std::vector<Ball> first(in.frames[0].begin(), in.frames[0].begin() + in.pieces);
         size = box_of(first, std::vector<bool>(in.pieces, true)).sizes().maxCoeff();
     }
-    std::vector<std::vector<Ball>> framed(n);
+    // What is framed of a body: its ball, and for a piece with a box, the box's eight corners
+    // too; either one wholly in the image has the body in it, so the nearer fit counts.
+    struct Framed {
+        Ball ball;
+        std::vector<Vec3> corners;  // empty: the ball alone
+    };
+    const bool with_boxes = in.boxes.size() == in.pieces && in.turns.size() == n;
+    std::vector<std::vector<Framed>> framed(n);
     std::vector<Vec3> centres(n);
     for (size_t f = 0; f < n; ++f) {
         const std::vector<Ball>& balls = in.frames[f];
         const std::vector<bool> keep =
             f == 0 ? std::vector<bool>(balls.size(), true) : kept_balls(balls, mass, in.pieces);
-        for (size_t i = 0; i < balls.size(); ++i)
-            if (keep[i]) framed[f].push_back(balls[i]);
-        Eigen::AlignedBox3d box = box_of(balls, keep);
+        Eigen::AlignedBox3d box;
+        for (size_t i = 0; i < balls.size(); ++i) {
+            if (!keep[i]) continue;
+            Framed item{balls[i], {}};
+            Eigen::AlignedBox3d around(balls[i].centre - Vec3::Constant(balls[i].radius),
+                                       balls[i].centre + Vec3::Constant(balls[i].radius));
+            if (with_boxes && i < in.pieces && in.turns[f].size() == in.pieces) {
+                Eigen::AlignedBox3d of_corners;
+                for (int k = 0; k < 8; ++k) {
+                    const Vec3 corner = in.boxes[i].corner(Eigen::AlignedBox3d::CornerType(k));
+                    item.corners.push_back(in.turns[f][i] * corner + balls[i].centre);
+                    of_corners.extend(item.corners.back());
+                }
+                around = around.intersection(of_corners);  // both hold the piece
+            }
+            box.extend(around);
+            framed[f].push_back(item);
+        }
         if (box.isEmpty()) box.extend(Vec3::Zero());
         if (in.ground) {
             const double below = std::max(in.ground_height, box.min().y() - kGroundReach * size);
             const Vec3 ground(box.center().x(), std::min(below, box.min().y()), box.center().z());
-            framed[f].push_back({ground, 0.0});
+            framed[f].push_back({{ground, 0.0}, {}});
             box.extend(ground);
         }
         centres[f] = box.center();
@@ -127,13 +173,22 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
     // 3. The distance each frame needs from its target; the window's largest need, smoothed.
     std::vector<double> need(n, 0.0);
     for (size_t f = 0; f < n; ++f) {
+        // The distance at which a ball about `q` (from the target) fills the inner 90% at most.
+        auto fit = [&](const Vec3& q, double radius) {
+            const double depth = q.dot(dir);
+            return std::max(depth + (std::abs(q.dot(right)) + radius) / (kAutoFill * tan_h),
+                            depth + (std::abs(q.dot(up)) + radius) / (kAutoFill * tan_v));
+        };
         // At least 10 cm across is framed, as animation_bounds does.
         double d = 0.05 / (kAutoFill * tan_v);
-        for (const Ball& b : framed[f]) {
-            const Vec3 q = b.centre - targets[f];
-            const double depth = q.dot(dir);
-            d = std::max(d, depth + (std::abs(q.dot(right)) + b.radius) / (kAutoFill * tan_h));
-            d = std::max(d, depth + (std::abs(q.dot(up)) + b.radius) / (kAutoFill * tan_v));
+        for (const Framed& item : framed[f]) {
+            double by = fit(item.ball.centre - targets[f], item.ball.radius);
+            if (!item.corners.empty()) {
+                double by_corners = 0;
+                for (const Vec3& c : item.corners) by_corners = std::max(by_corners, fit(c - targets[f], 0));
+                by = std::min(by, by_corners);
+            }
+            d = std::max(d, by);
         }
         need[f] = d;
     }
@@ -240,7 +295,7 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     const std::vector<Camera> cameras = make_camera_path(scene, s);
     auto camera = [&](uint32_t f) -> const Camera& { return cameras[cameras.size() > 1 ? f : 0]; };
     std::vector<double> radius(t.pieces);
-    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
+    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_ball_radius(scene.model->pieces[i]);
     // Where a point of piece i (about its centre of mass, model axes) lands in frame f (unit: px).
     auto pixel = [&](uint32_t f, uint32_t i, const Vec3& local) {
         const BodyPose& pose = t.pose(f, i);
@@ -252,17 +307,20 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     // a piece that turns in place (a slab rocking) counts as moving.
     std::vector<std::vector<Vec3>> corners(t.pieces);
     for (uint32_t i = 0; i < t.pieces && i < scene.model->pieces.size(); ++i) {
-        const Piece& piece = scene.model->pieces[i];
-        Eigen::AlignedBox3d box;
-        for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
-        if (box.isEmpty()) box.extend(Vec3::Zero());
+        const Eigen::AlignedBox3d box = piece_box(scene.model->pieces[i]);
         for (int k = 0; k < 8; ++k) corners[i].push_back(box.corner(Eigen::AlignedBox3d::CornerType(k)));
     }
     out.least = 1;
     for (uint32_t f = 0; f < t.frames(); ++f) {
         uint32_t seen = 0;
-        for (uint32_t i = 0; i < t.pieces; ++i)
-            if (ball_in_view(camera(f), {t.pose(f, i).position.cast<double>(), radius[i]})) ++seen;
+        for (uint32_t i = 0; i < t.pieces; ++i) {
+            const BodyPose& pose = t.pose(f, i);
+            const Eigen::Quaterniond r = pose.rotation.cast<double>().normalized();
+            bool in = true;  // its box wholly in view, or else its ball
+            for (const Vec3& q : corners[i])
+                in = in && ball_in_view(camera(f), {r * q + pose.position.cast<double>(), 0.0});
+            if (in || ball_in_view(camera(f), {pose.position.cast<double>(), radius[i]})) ++seen;
+        }
         const double share = t.pieces ? double(seen) / t.pieces : 1.0;
         out.in_view.push_back(share);
         if (share < out.least) out.least = share, out.least_frame = f;

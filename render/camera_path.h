@@ -5,22 +5,24 @@
 // from the pieces of each frame and smoothed over the whole trajectory, computed once before
 // any frame is drawn:
 //
-//   1. per frame, the box of the balls to frame: the pieces' balls (centre of mass plus radius),
-//      the props' balls, the finite static colliders, and the ground below the pieces' box down
-//      to kGroundReach object sizes (so the ground comes into view before the landing, without
-//      framing the whole drop). Pieces may be let go: a piece outside the main mass (main_mass:
-//      the pieces nearest the mass-weighted median holding 90% of the mass) whose ball lies more
-//      than kLetGo of the main mass's box diagonal outside that box, at most a tenth of the
-//      pieces, the farthest first; never in the first frame;
-//   2. the target: the box centres smoothed with a Hann window of +-kFollowWindow (symmetric:
-//      looks ahead as far as back, so the camera starts to slow before the landing);
-//   3. the distance each frame needs so that those balls fall inside the inner 90% of the image
-//      from the smoothed target; then the largest need within +-kFollowWindow, smoothed with the
-//      same window. Every weight of the window lies within the span of the maximum, so the
-//      smoothed distance is never less than the frame's need: the kept balls of every frame are
-//      in view (every piece in the first frame, at least 90% of them in every frame), and the
-//      path has no jitter (a frame's camera depends on the whole trajectory, not on the range
-//      rendered).
+//   1. per frame, what to frame: each piece's ball (centre of mass plus radius) or the corners
+//      of its box (piece_box, turning with it), whichever fits nearer (either one in the image
+//      has the piece in it); the props' balls; the finite static colliders; and the ground below
+//      the pieces, at most kGroundReach object sizes below them (so the ground comes into view
+//      before the landing, without framing the whole drop). Pieces may be let go: a piece
+//      outside the main mass (main_mass: the pieces nearest the mass-weighted median holding 90%
+//      of the mass) whose ball lies more than kLetGo of the main mass's box diagonal outside
+//      that box, at most a tenth of the pieces, the farthest first; never in the first frame;
+//   2. the target: the centres of the boxes around what is framed, smoothed with a Hann window
+//      of +-kFollowWindow (symmetric: looks ahead as far as back, so the camera starts to slow
+//      before the landing);
+//   3. the distance each frame needs so that what it frames falls inside the inner 90% of the
+//      image from the smoothed target; then the largest need within +-kFollowWindow, smoothed
+//      with the same window. Every weight of the window lies within the span of the maximum, so
+//      the smoothed distance is never less than the frame's need: the kept pieces of every frame
+//      are in view (every piece in the first frame, at least 90% of them in every frame), and
+//      the path has no jitter (a frame's camera depends on the whole trajectory, not on the
+//      range rendered).
 //
 // Why: framing the ground point directly under the pieces in every frame (as this camera first
 // did) framed a 0.2 m object dropped from 1.5 m with the whole drop below it, at about a tenth
@@ -55,11 +57,21 @@ struct FollowInput {
     std::vector<std::vector<Ball>> frames;  // per frame: the pieces' balls, then the others
     uint32_t pieces = 0;                    // the first `pieces` balls of a frame are pieces
     std::vector<double> mass;               // per piece (unit: kg); absent: all alike
+    // Optional: per piece its box about its centre of mass (model axes), and per frame each
+    // piece's rotation; with them a kept piece is framed by its box's corners, not by its ball.
+    std::vector<Eigen::AlignedBox3d> boxes;
+    std::vector<std::vector<Eigen::Quaterniond>> turns;  // [frame][piece]
     bool ground = true;
     double ground_height = 0;  // (unit: m)
     double fps = 30;           // (unit: frames/s)
 };
 FollowInput follow_input(const RenderScene& scene);
+
+// A piece's box about its centre of mass (model axes): around its tet surface and its render
+// surface, what is drawn of it; a point at the centre when it has neither.
+Eigen::AlignedBox3d piece_box(const Piece& piece);
+// The radius of the ball about its centre of mass that holds both surfaces (unit: m).
+double piece_ball_radius(const Piece& piece);
 
 // One camera per frame, from `bounds` (the whole animation: near and far planes).
 std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBox3d& bounds, const RenderSettings& s);
@@ -87,10 +99,11 @@ double screen_fill(const Camera& c, const std::vector<Ball>& balls);
 // `ground_height`, or false when it does not go down.
 bool ground_at_bottom(const Camera& c, double ground_height, Vec3* at);
 
-// What a render's cameras show, measured on the pieces' balls (centre of mass plus radius, so a
-// slight over-estimate of each piece) projected through the camera of each frame.
+// What a render's cameras show, measured on the pieces' boxes (piece_box, turning with the piece)
+// and balls (piece_ball_radius), each an over-estimate of the piece, projected through the camera
+// of each frame.
 struct CameraCoverage {
-    std::vector<double> in_view;  // per frame: the fraction of the pieces wholly in view
+    std::vector<double> in_view;  // per frame: the share of the pieces whose whole box or ball is in view
     double first = 0;             // in_view of frame 0
     double least = 0;             // the smallest in_view
     uint32_t least_frame = 0;

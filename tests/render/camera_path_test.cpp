@@ -240,6 +240,31 @@ TEST(FollowCamera, CoverageOfTheTestScene) {
                 c.fill_least_frame, c.fill_median);
 }
 
+// A 1 m rod, 2 cm thick, lying still along x: its ball (radius 0.5 m) needs the camera 1.5 m
+// off for the image's height (0.5 / (0.9 tan 20 deg)); its box's corners fit the image's width
+// (16:9) much nearer. With its box the camera takes the nearer fit, and the box is in view.
+TEST(FollowCamera, APieceIsFramedByItsBoxWhenThatFitsNearer) {
+    FollowInput in;
+    in.pieces = 1;
+    in.fps = kFps;
+    in.ground = false;
+    in.frames.assign(10, {{Vec3(0, 1, 0), 0.5}});
+    const Eigen::AlignedBox3d whole_box(Vec3(-0.5, 0.5, -0.5), Vec3(0.5, 1.5, 0.5));
+    const auto by_ball = follow_cameras(in, whole_box, hd());
+    in.boxes = {Eigen::AlignedBox3d(Vec3(-0.5, -0.01, -0.01), Vec3(0.5, 0.01, 0.01))};
+    in.turns.assign(10, {Eigen::Quaterniond::Identity()});
+    const auto by_box = follow_cameras(in, whole_box, hd());
+    const double ball = (by_ball[0].position - by_ball[0].target).norm();
+    const double box = (by_box[0].position - by_box[0].target).norm();
+    EXPECT_NEAR(ball, 0.5 / (0.9 * std::tan(20 * M_PI / 180)), 1e-4);
+    EXPECT_LT(box, 0.7 * ball);
+    for (int k = 0; k < 8; ++k) {
+        const Vec3 corner = in.boxes[0].corner(Eigen::AlignedBox3d::CornerType(k)) + Vec3(0, 1, 0);
+        EXPECT_TRUE(ball_in_view(by_box[0], {corner, 0}));
+    }
+    std::printf("[ follow   ] a 1 m rod: the camera %.3f m off by its ball, %.3f m by its box\n", ball, box);
+}
+
 TEST(FollowCamera, BallInViewMatchesTheFrustum) {
     RenderSettings s = hd();
     s.camera_position = Vec3(0, 0, 2);
