@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
         std::printf("frame,in_view,fill,target_x,target_y,target_z,distance\n");
         for (uint32_t f = 0; f < t.frames(); ++f) {
             const Camera& cam = cams[cams.size() > 1 ? f : 0];
-            std::printf("%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", f, c.in_view[f], c.fill[f], cam.target.x(),
+            std::printf("%u,%.3f,%.3f,%.6f,%.6f,%.6f,%.6f\n", f, c.in_view[f], c.fill[f], cam.target.x(),
                         cam.target.y(), cam.target.z(), (cam.position - cam.target).norm());
         }
         std::printf("piece,mass_share,radius,last_x,last_y,last_z\n");
