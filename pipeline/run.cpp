@@ -439,9 +439,11 @@ private:
         }
         const CameraCoverage cover = camera_coverage(scene, shot_.render);
         spdlog::info("render: camera {}: {:.0f}% of the pieces in view in the first frame, at least {:.0f}% in "
-                     "every frame (frame {}), {:.2f} s still at the end",
+                     "every frame (frame {}), {:.2f} s still at the end; the main mass fills {:.0f}% of the image at "
+                     "least (frame {}), {:.0f}% in the median frame; {} frames without ground at the bottom",
                      shot_.render.camera_position ? "placed by the shot" : to_string(shot_.render.camera), 100 * cover.first,
-                     100 * cover.least, cover.least_frame, cover.still_at_end);
+                     100 * cover.least, cover.least_frame, cover.still_at_end, 100 * cover.fill_least,
+                     cover.fill_least_frame, 100 * cover.fill_median, cover.frames_without_ground);
     }
 
     // summary.json: what the run made, deterministic (no times; those are in run.log).

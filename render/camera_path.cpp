@@ -9,9 +9,6 @@ namespace shatter {
 
 namespace {
 
-constexpr double kOutlierShare = 0.1;   // at most this share of the pieces may be left out
-constexpr double kOutlierGrowth = 2.0;  // ... and only when they make the box this much larger
-
 Eigen::AlignedBox3d box_of(const std::vector<Ball>& balls, const std::vector<bool>& keep) {
     Eigen::AlignedBox3d box;
     for (size_t i = 0; i < balls.size(); ++i)
@@ -22,31 +19,29 @@ Eigen::AlignedBox3d box_of(const std::vector<Ball>& balls, const std::vector<boo
     return box;
 }
 
-// Which balls of a frame are framed: all, or all but up to a tenth of the pieces, the farthest
-// from the pieces' median centre, when those would more than double the box's diagonal.
-std::vector<bool> kept_balls(const std::vector<Ball>& balls, uint32_t pieces) {
+// Which balls of a frame are framed: all but the pieces let go. A piece is let go when it lies
+// outside the main mass (main_mass), its ball more than kLetGo diagonals of the main mass's box
+// away from that box, and it is among the kLetGoShare of the pieces farthest from that box.
+std::vector<bool> kept_balls(const std::vector<Ball>& balls, const std::vector<double>& mass, uint32_t pieces) {
     std::vector<bool> keep(balls.size(), true);
-    const size_t drop = size_t(std::floor(kOutlierShare * pieces));
-    if (drop == 0) return keep;
-    Vec3 median;
-    for (int axis = 0; axis < 3; ++axis) {
-        std::vector<double> v;
-        for (uint32_t i = 0; i < pieces; ++i) v.push_back(balls[i].centre[axis]);
-        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-        median[axis] = v[v.size() / 2];
+    const size_t most = size_t(std::floor(kLetGoShare * pieces + 1e-9));
+    if (most == 0) return keep;
+    const std::vector<Ball> piece_balls(balls.begin(), balls.begin() + pieces);
+    std::vector<bool> in_main(pieces, false);
+    for (uint32_t i : main_mass(piece_balls, mass)) in_main[i] = true;
+    const Eigen::AlignedBox3d box = box_of(piece_balls, in_main);
+    const double diagonal = box.sizes().norm();
+    std::vector<std::pair<double, uint32_t>> far;  // (distance of the ball outside the box, piece)
+    for (uint32_t i = 0; i < pieces; ++i) {
+        const double gap = box.exteriorDistance(balls[i].centre) - balls[i].radius;
+        if (!in_main[i] && gap > kLetGo * diagonal) far.push_back({gap, i});
     }
-    std::vector<uint32_t> order(pieces);
-    for (uint32_t i = 0; i < pieces; ++i) order[i] = i;
-    auto reach = [&](uint32_t i) { return (balls[i].centre - median).norm() + balls[i].radius; };
     // Farthest first; ties by index, so the choice is the same on every machine.
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        const double ra = reach(a), rb = reach(b);
-        return ra != rb ? ra > rb : a < b;
+    std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
     });
-    std::vector<bool> trimmed = keep;
-    for (size_t k = 0; k < drop; ++k) trimmed[order[k]] = false;
-    const double all = box_of(balls, keep).sizes().norm(), rest = box_of(balls, trimmed).sizes().norm();
-    return all > kOutlierGrowth * rest ? trimmed : keep;
+    for (size_t k = 0; k < far.size() && k < most; ++k) keep[far[k].second] = false;
+    return keep;
 }
 
 // Symmetric Hann window of half-width `w` frames (weights sum to 1), applied with the ends held.
@@ -68,6 +63,22 @@ std::vector<T> smooth(const std::vector<T>& x, int w) {
 
 }  // namespace
 
+Eigen::AlignedBox3d piece_box(const Piece& piece) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
+    if (piece.render)
+        for (const Vec3& v : piece.render->vertices) box.extend(v - piece.mass.center);
+    if (box.isEmpty()) box.extend(Vec3::Zero());
+    return box;
+}
+
+double piece_ball_radius(const Piece& piece) {
+    double r = piece_radius(piece);
+    if (piece.render)
+        for (const Vec3& v : piece.render->vertices) r = std::max(r, (v - piece.mass.center).norm());
+    return r;
+}
+
 FollowInput follow_input(const RenderScene& scene) {
     FollowInput in;
     const Trajectory& t = *scene.trajectory;
@@ -75,8 +86,17 @@ FollowInput follow_input(const RenderScene& scene) {
     in.ground = scene.scene.ground;
     in.ground_height = scene.scene.ground_height;
     in.fps = t.fps;
+    for (uint32_t i = 0; i < t.pieces; ++i) {
+        const Piece& piece = scene.model->pieces[i];
+        in.mass.push_back(piece.mass.mass);
+        in.boxes.push_back(piece_box(piece));
+    }
+    in.turns.resize(t.frames());
+    for (uint32_t f = 0; f < t.frames(); ++f)
+        for (uint32_t i = 0; i < t.pieces; ++i)
+            in.turns[f].push_back(t.pose(f, i).rotation.cast<double>().normalized());
     std::vector<double> radius(t.bodies(), 0.0);
-    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
+    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_ball_radius(scene.model->pieces[i]);
     for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(scene.scene.kinematic[k].shape);
     std::vector<Ball> statics;
     for (const ColliderSettings& c : scene.scene.colliders)
@@ -98,20 +118,53 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
     const Vec3 right = Vec3(0, 1, 0).cross(dir).normalized(), up = dir.cross(right);
     const int window = std::max(1, int(std::lround(kFollowWindow * in.fps)));
 
-    // 1. Per frame: the balls framed (the kept ones and the ground point under them), their box.
-    std::vector<std::vector<Ball>> framed(n);
+    std::vector<double> mass = in.mass;
+    mass.resize(in.pieces, 1.0);
+
+    // 1. Per frame: the balls framed (the kept ones, and the ground below them down to
+    // kGroundReach object sizes), their box. The first frame keeps every piece.
+    double size = 0;  // the object's size: the largest side of its pieces' box in the first frame (unit: m)
+    if (n > 0 && in.pieces > 0) {
+        const std::vector<Ball> first(in.frames[0].begin(), in.frames[0].begin() + in.pieces);
+        size = box_of(first, std::vector<bool>(in.pieces, true)).sizes().maxCoeff();
+    }
+    // What is framed of a body: its ball, and for a piece with a box, the box's eight corners
+    // too; either one wholly in the image has the body in it, so the nearer fit counts.
+    struct Framed {
+        Ball ball;
+        std::vector<Vec3> corners;  // empty: the ball alone
+    };
+    const bool with_boxes = in.boxes.size() == in.pieces && in.turns.size() == n;
+    std::vector<std::vector<Framed>> framed(n);
     std::vector<Vec3> centres(n);
     for (size_t f = 0; f < n; ++f) {
         const std::vector<Ball>& balls = in.frames[f];
-        const std::vector<bool> keep = kept_balls(balls, in.pieces);
-        for (size_t i = 0; i < balls.size(); ++i)
-            if (keep[i]) framed[f].push_back(balls[i]);
-        Eigen::AlignedBox3d box = box_of(balls, keep);
+        const std::vector<bool> keep =
+            f == 0 ? std::vector<bool>(balls.size(), true) : kept_balls(balls, mass, in.pieces);
+        Eigen::AlignedBox3d box;
+        for (size_t i = 0; i < balls.size(); ++i) {
+            if (!keep[i]) continue;
+            Framed item{balls[i], {}};
+            Eigen::AlignedBox3d around(balls[i].centre - Vec3::Constant(balls[i].radius),
+                                       balls[i].centre + Vec3::Constant(balls[i].radius));
+            if (with_boxes && i < in.pieces && in.turns[f].size() == in.pieces) {
+                Eigen::AlignedBox3d of_corners;
+                for (int k = 0; k < 8; ++k) {
+                    const Vec3 corner = in.boxes[i].corner(Eigen::AlignedBox3d::CornerType(k));
+                    item.corners.push_back(in.turns[f][i] * corner + balls[i].centre);
+                    of_corners.extend(item.corners.back());
+                }
+                around = around.intersection(of_corners);  // both hold the piece
+            }
+            box.extend(around);
+            framed[f].push_back(item);
+        }
         if (box.isEmpty()) box.extend(Vec3::Zero());
         if (in.ground) {
-            const Vec3 contact(box.center().x(), in.ground_height, box.center().z());
-            framed[f].push_back({contact, 0.0});
-            box.extend(contact);
+            const double below = std::max(in.ground_height, box.min().y() - kGroundReach * size);
+            const Vec3 ground(box.center().x(), std::min(below, box.min().y()), box.center().z());
+            framed[f].push_back({{ground, 0.0}, {}});
+            box.extend(ground);
         }
         centres[f] = box.center();
     }
@@ -120,13 +173,22 @@ std::vector<Camera> follow_cameras(const FollowInput& in, const Eigen::AlignedBo
     // 3. The distance each frame needs from its target; the window's largest need, smoothed.
     std::vector<double> need(n, 0.0);
     for (size_t f = 0; f < n; ++f) {
+        // The distance at which a ball about `q` (from the target) fills the inner 90% at most.
+        auto fit = [&](const Vec3& q, double radius) {
+            const double depth = q.dot(dir);
+            return std::max(depth + (std::abs(q.dot(right)) + radius) / (kAutoFill * tan_h),
+                            depth + (std::abs(q.dot(up)) + radius) / (kAutoFill * tan_v));
+        };
         // At least 10 cm across is framed, as animation_bounds does.
         double d = 0.05 / (kAutoFill * tan_v);
-        for (const Ball& b : framed[f]) {
-            const Vec3 q = b.centre - targets[f];
-            const double depth = q.dot(dir);
-            d = std::max(d, depth + (std::abs(q.dot(right)) + b.radius) / (kAutoFill * tan_h));
-            d = std::max(d, depth + (std::abs(q.dot(up)) + b.radius) / (kAutoFill * tan_v));
+        for (const Framed& item : framed[f]) {
+            double by = fit(item.ball.centre - targets[f], item.ball.radius);
+            if (!item.corners.empty()) {
+                double by_corners = 0;
+                for (const Vec3& c : item.corners) by_corners = std::max(by_corners, fit(c - targets[f], 0));
+                by = std::min(by, by_corners);
+            }
+            d = std::max(d, by);
         }
         need[f] = d;
     }
@@ -152,6 +214,70 @@ std::vector<Camera> make_camera_path(const RenderScene& scene, const RenderSetti
     return follow_cameras(follow_input(scene), bounds, s);
 }
 
+std::vector<uint32_t> main_mass(const std::vector<Ball>& pieces, const std::vector<double>& given) {
+    const uint32_t n = uint32_t(pieces.size());
+    double total = 0;
+    for (uint32_t i = 0; i < n; ++i) total += given[i];
+    const bool alike = !(total > 0 && std::isfinite(total));  // then the pieces count alike
+    const std::vector<double> mass = alike ? std::vector<double>(n, 1.0) : given;
+    if (alike) total = n;
+    std::vector<uint32_t> order(n);
+    for (uint32_t i = 0; i < n; ++i) order[i] = i;
+    // The weighted median per axis: the first centre, in order along the axis, by which half the
+    // mass is reached.
+    Vec3 median = Vec3::Zero();
+    for (int axis = 0; axis < 3; ++axis) {
+        std::vector<uint32_t> along = order;
+        std::sort(along.begin(), along.end(), [&](uint32_t a, uint32_t b) {
+            const double ca = pieces[a].centre[axis], cb = pieces[b].centre[axis];
+            return ca != cb ? ca < cb : a < b;
+        });
+        double sum = 0;
+        for (uint32_t i : along) {
+            median[axis] = pieces[i].centre[axis];
+            if ((sum += mass[i]) >= total / 2) break;
+        }
+    }
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const double da = (pieces[a].centre - median).norm(), db = (pieces[b].centre - median).norm();
+        return da != db ? da < db : a < b;
+    });
+    std::vector<uint32_t> out;
+    double sum = 0;
+    for (uint32_t i : order) {
+        if (sum >= kMainMass * total * (1 - 1e-12)) break;
+        out.push_back(i);
+        sum += mass[i];
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+double screen_fill(const Camera& c, const std::vector<Ball>& balls) {
+    const double sx = c.projection(0, 0), sy = c.projection(1, 1);  // NDC per unit of x / depth
+    double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY, hi_y = -INFINITY;
+    for (const Ball& b : balls) {
+        const Eigen::Vector3d p = (c.view.cast<double>() * b.centre.homogeneous()).head<3>();
+        const double depth = -p.z();
+        if (!(depth > 0)) return INFINITY;  // behind the eye: not a framing
+        lo_x = std::min(lo_x, sx * (p.x() - b.radius) / depth);
+        hi_x = std::max(hi_x, sx * (p.x() + b.radius) / depth);
+        lo_y = std::min(lo_y, sy * (p.y() - b.radius) / depth);
+        hi_y = std::max(hi_y, sy * (p.y() + b.radius) / depth);
+    }
+    if (balls.empty()) return 0;
+    return std::max(hi_x - lo_x, hi_y - lo_y) / 2;  // NDC spans 2 across the image
+}
+
+bool ground_at_bottom(const Camera& c, double ground_height, Vec3* at) {
+    const Eigen::Matrix3d to_world = c.view.block<3, 3>(0, 0).cast<double>().transpose();
+    const Vec3 ray = to_world * Vec3(0, -1 / double(c.projection(1, 1)), -1);
+    const Vec3 eye = c.position.cast<double>();
+    if (!(ray.y() < 0) || !(eye.y() > ground_height)) return false;
+    *at = eye + ray * ((ground_height - eye.y()) / ray.y());
+    return true;
+}
+
 bool ball_in_view(const Camera& c, const Ball& b, bool partly) {
     const Eigen::Vector3d p = (c.view.cast<double>() * b.centre.homogeneous()).head<3>();
     const double depth = -p.z();
@@ -169,7 +295,7 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     const std::vector<Camera> cameras = make_camera_path(scene, s);
     auto camera = [&](uint32_t f) -> const Camera& { return cameras[cameras.size() > 1 ? f : 0]; };
     std::vector<double> radius(t.pieces);
-    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
+    for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_ball_radius(scene.model->pieces[i]);
     // Where a point of piece i (about its centre of mass, model axes) lands in frame f (unit: px).
     auto pixel = [&](uint32_t f, uint32_t i, const Vec3& local) {
         const BodyPose& pose = t.pose(f, i);
@@ -181,22 +307,52 @@ CameraCoverage camera_coverage(const RenderScene& scene, const RenderSettings& s
     // a piece that turns in place (a slab rocking) counts as moving.
     std::vector<std::vector<Vec3>> corners(t.pieces);
     for (uint32_t i = 0; i < t.pieces && i < scene.model->pieces.size(); ++i) {
-        const Piece& piece = scene.model->pieces[i];
-        Eigen::AlignedBox3d box;
-        for (const Vec3& v : piece.surface.vertices) box.extend(v - piece.mass.center);
-        if (box.isEmpty()) box.extend(Vec3::Zero());
+        const Eigen::AlignedBox3d box = piece_box(scene.model->pieces[i]);
         for (int k = 0; k < 8; ++k) corners[i].push_back(box.corner(Eigen::AlignedBox3d::CornerType(k)));
     }
     out.least = 1;
     for (uint32_t f = 0; f < t.frames(); ++f) {
         uint32_t seen = 0;
-        for (uint32_t i = 0; i < t.pieces; ++i)
-            if (ball_in_view(camera(f), {t.pose(f, i).position.cast<double>(), radius[i]})) ++seen;
+        for (uint32_t i = 0; i < t.pieces; ++i) {
+            const BodyPose& pose = t.pose(f, i);
+            const Eigen::Quaterniond r = pose.rotation.cast<double>().normalized();
+            bool in = true;  // its box wholly in view, or else its ball
+            for (const Vec3& q : corners[i])
+                in = in && ball_in_view(camera(f), {r * q + pose.position.cast<double>(), 0.0});
+            if (in || ball_in_view(camera(f), {pose.position.cast<double>(), radius[i]})) ++seen;
+        }
         const double share = t.pieces ? double(seen) / t.pieces : 1.0;
         out.in_view.push_back(share);
         if (share < out.least) out.least = share, out.least_frame = f;
     }
     out.first = out.in_view.empty() ? 1.0 : out.in_view.front();
+    std::vector<double> mass(t.pieces);
+    for (uint32_t i = 0; i < t.pieces; ++i) mass[i] = scene.model->pieces[i].mass.mass;
+    const Eigen::AlignedBox3d bounds = animation_bounds(scene);
+    const double fade_start = kFadeStart * bounds.sizes().norm() / 2;
+    for (uint32_t f = 0; f < t.frames(); ++f) {
+        std::vector<Ball> centres, corner_points;
+        for (uint32_t i = 0; i < t.pieces; ++i) centres.push_back({t.pose(f, i).position.cast<double>(), radius[i]});
+        for (uint32_t i : main_mass(centres, mass)) {
+            const BodyPose& pose = t.pose(f, i);
+            const Mat3 r = pose.rotation.cast<double>().normalized().toRotationMatrix();
+            for (const Vec3& q : corners[i]) corner_points.push_back({r * q + pose.position.cast<double>(), 0.0});
+        }
+        out.fill.push_back(screen_fill(camera(f), corner_points));
+        Vec3 at;
+        if (!scene.scene.ground) continue;
+        if (!ground_at_bottom(camera(f), scene.scene.ground_height, &at) ||
+            Eigen::Vector2d(at.x() - bounds.center().x(), at.z() - bounds.center().z()).norm() > fade_start)
+            ++out.frames_without_ground;
+    }
+    if (!out.fill.empty()) {
+        const auto least = std::min_element(out.fill.begin(), out.fill.end());
+        out.fill_least = *least;
+        out.fill_least_frame = uint32_t(least - out.fill.begin());
+        std::vector<double> sorted = out.fill;
+        std::sort(sorted.begin(), sorted.end());
+        out.fill_median = sorted[sorted.size() / 2];
+    }
     uint32_t still = 0;
     for (uint32_t f = t.frames(); f-- > 1;) {
         bool moved = false;

@@ -17,10 +17,11 @@ namespace {
 
 constexpr float kPieceSpecular = 0.25f, kPropSpecular = 0.15f, kColliderSpecular = 0.1f;
 const Colour kGroundColour = {0.40f, 0.39f, 0.37f};
-// The ground square reaches just past the fade (its inscribed circle is the fade end): beyond,
-// the ground would be the background colour, fragments for nothing. Planes keep 10: on a
-// tilted plane the fade's horizontal distance is shorter than the distance in the plane.
-constexpr double kFadeStart = 2.5, kFadeEnd = 8, kGroundExtent = 8.25, kPlaneExtent = 10;  // in animation radii
+// The ground square reaches just past the fade (kFadeStart, kFadeEnd: render/scene_bounds.h; its
+// inscribed circle is the fade end): beyond, the ground would be the background colour,
+// fragments for nothing. Planes keep 10: on a tilted plane the fade's horizontal distance is
+// shorter than the distance in the plane.
+constexpr double kGroundExtent = 8.25, kPlaneExtent = 10;  // in animation radii
 
 Eigen::Matrix4f pose_matrix(const Mat3& rotation, const Vec3& position) {
     Eigen::Matrix4f m = Eigen::Matrix4f::Identity();

@@ -23,6 +23,9 @@ struct Ball {
 // A ball around every piece and kinematic body in every frame, and around each finite static
 // collider (boxes, spheres; planes and meshes are scenery and left out).
 std::vector<Ball> animation_balls(const RenderScene& scene);
+// The ground fades into the background colour from kFadeStart to kFadeEnd, measured
+// horizontally from the centre of the animation's box (unit: the box's half-diagonal).
+inline constexpr double kFadeStart = 2.5, kFadeEnd = 8;
 // The box around those balls, at least 10 cm on each side.
 Eigen::AlignedBox3d animation_bounds(const std::vector<Ball>& balls);
 inline Eigen::AlignedBox3d animation_bounds(const RenderScene& scene) { return animation_bounds(animation_balls(scene)); }

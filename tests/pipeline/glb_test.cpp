@@ -406,6 +406,21 @@ TEST(GlbExport, HoldsRendersCameraAnimatedWhenItMoves) {
             const Eigen::Vector3f look = Eigen::Quaternionf(q.w, q.x, q.y, q.z) * Eigen::Vector3f(0, 0, -1);
             EXPECT_NEAR((look - (path[f].target - path[f].position).normalized()).norm(), 0, 1e-5) << f;
         }
+        // What a DCC tool computes from the keys, the view matrix (the inverse of the node's
+        // transform [R | p]: [R^T | -R^T p]), is the matrix render draws frame f with.
+        double worst = 0;
+        for (uint32_t f = 0; f < kFrames; ++f) {
+            const aiQuaternion& q = ch->mRotationKeys[f].mValue;
+            const aiVector3D& p = ch->mPositionKeys[f].mValue;
+            const Eigen::Matrix3d r = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+            Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+            view.block<3, 3>(0, 0) = r.transpose();
+            view.block<3, 1>(0, 3) = -r.transpose() * Eigen::Vector3d(p.x, p.y, p.z);
+            worst = std::max(worst, (view - path[f].view.cast<double>()).cwiseAbs().maxCoeff());
+        }
+        EXPECT_LT(worst, 1e-6);
+        std::cout << "camera: the keys' view matrices within " << worst << " of render's\n";
+        EXPECT_GT((path.front().position - path.back().position).norm(), 1e-3);  // it does move
     }
     RenderSettings placed = follow;
     placed.camera_position = Vec3(1, 2, 3);
