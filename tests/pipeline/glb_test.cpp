@@ -217,7 +217,7 @@ TEST(GlbExport, RotationKeysStayOnOneHemisphereSoInterpolationTurnsTheShortWay) 
     }
 }
 
-TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithPaletteColours) {
+TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithRendersColours) {
     TempDir dir;
     const Model m = test_model();
     export_glb(m, test_trajectory(m), dir.file("a.glb"));
@@ -235,18 +235,19 @@ TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithPaletteColours) 
         EXPECT_NEAR(std::abs(mesh->mVertices[i].z), 0.2, 1e-6);
         EXPECT_NEAR(mesh->mNormals[i].Length(), 1.0, 1e-6);
     }
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(mesh)[i], piece_colour(2)[i], 1e-6);
+    // Without render settings, render's defaults: a model without materials in material_colour.
+    const RenderSettings look;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(mesh)[i], look.material_colour[size_t(i)], 1e-6);
 
     // Piece 0's fracture and cavity faces have render's shades of its colour.
     const aiNode* n0 = g.node("piece_0");
     ASSERT_EQ(n0->mNumMeshes, 3u);
-    const RenderSettings look;
     const FaceKind kinds[3] = {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity};
     const unsigned faces[3] = {9, 2, 1};
     for (int k = 0; k < 3; ++k) {
         const aiMesh* part = g.scene->mMeshes[n0->mMeshes[k]];
         EXPECT_EQ(part->mNumFaces, faces[k]) << k;
-        const Colour want = face_colour(piece_colour(0), kinds[k], look);
+        const Colour want = face_colour(look.material_colour, kinds[k], look);
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(part)[i], want[i], 1e-6) << k;
     }
     // The sphere prop has its radius and its scene colour.
@@ -461,8 +462,9 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
     ASSERT_TRUE(last);
     EXPECT_EQ(last->mNumPositionKeys, kFewFrames);
     EXPECT_NEAR(last->mPositionKeys[kFewFrames - 1].mValue.y, m.pieces[999].mass.center.y() - 0.1, 1e-5);
+    const RenderSettings look;  // render's defaults: a model without materials in material_colour
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(g.scene->mMeshes[g.node("piece_999")->mMeshes[0]])[i],
-                                            piece_colour(999)[i], 1e-6);
+                                            look.material_colour[size_t(i)], 1e-6);
 }
 
 // A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each

@@ -70,7 +70,7 @@ TEST(Golden, DeliberateChangesOfTheLookFail) {
     const Change changes[] = {
         {"key light moved 25 degrees", [](RenderSettings& s) { s.key_azimuth += 25; }},
         {"key light 15 degrees lower", [](RenderSettings& s) { s.key_elevation -= 15; }},
-        {"pieces in one wrong colour", [](RenderSettings& s) { s.colour_mode = ColourMode::Material; }},
+        {"pieces in one wrong colour", [](RenderSettings& s) { s.colours = Colours::Material; }},
         {"fracture faces untinted", [](RenderSettings& s) { s.fracture_tint = 0; }},
         {"no shadows", [](RenderSettings& s) { s.shadows = false; }},
         {"camera moved", [](RenderSettings& s) { s.camera_position = Vec3(0.5, 0.3, 0.6); }},

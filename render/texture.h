@@ -1,0 +1,46 @@
+// The input's textures (core/model.h Material::texture, the encoded image file) for drawing:
+// decoded with stb_image (PNG, JPEG, TGA, BMP; Debian's libstb), and uploaded to GL as sRGB
+// textures with mipmaps, so that sampling decodes them to linear light (trilinear filtering,
+// repeat wrapping, as glTF's default sampler).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+#include "render/mesh_builder.h"
+
+namespace shatter {
+
+struct DecodedImage {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // sRGB RGBA8, the file's top row first
+};
+
+// nullopt, with `why` set, when the bytes are not an image stb_image reads.
+std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why);
+
+// The mean colour of an image in linear light (alpha ignored).
+Colour mean_linear_colour(const DecodedImage& image);
+
+// How each material of `model` is drawn (mesh_builder.h MaterialLook), and the decoded images
+// its textures index into `images`. A texture that does not decode is logged as a warning
+// (once per material) and its material drawn in its base colour; never an error.
+std::vector<MaterialLook> material_looks(const Model& model, std::vector<DecodedImage>* images);
+
+// A decoded image as a GL texture (needs a current context).
+class GpuTexture {
+public:
+    explicit GpuTexture(const DecodedImage& image);
+    ~GpuTexture();
+    GpuTexture(const GpuTexture&) = delete;
+    GpuTexture& operator=(const GpuTexture&) = delete;
+    unsigned id() const { return id_; }
+
+private:
+    unsigned id_ = 0;
+};
+
+}  // namespace shatter
