@@ -1,7 +1,8 @@
 // The .glb export (pipeline/export_glb.h), checked by reading it back with assimp and by the
 // Khronos validator: one node per piece and kinematic body, one animation channel per node with
 // a key at every frame at time frame / fps, a known pose that comes back within 1e-5, vertices
-// about each piece's centre of mass in metres (+Y up, no conversion), the palette colours, the
+// about each piece's centre of mass in metres (+Y up, no conversion), render's colours, a
+// textured input's texture embedded with its texture coordinates, the
 // same bytes for the same input, and an atomic write that leaves no temporary behind.
 //
 // The validator test needs node and the npm package gltf-validator, which
@@ -16,8 +17,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -29,8 +33,10 @@
 #include "core/scene_settings.h"
 #include "pipeline/export_glb.h"
 #include "pipeline/process.h"
+#include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
+#include "render/texture.h"
 #include "scenes/box_model.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
@@ -503,6 +509,84 @@ TEST(GlbExport, RenderSurfacesExportIndexedWithTheirNormals) {
     if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
     std::string out;
     EXPECT_EQ(validator_errors(*node, *modules, dir.file("r.glb"), &out), 0) << out;
+}
+
+}  // namespace
+}  // namespace shatter
+
+namespace shatter {
+namespace {
+
+// The GLB's JSON chunk and its binary chunk.
+std::pair<nlohmann::json, std::string> glb_chunks(const std::string& bytes) {
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    const uint32_t json_length = u32(12);
+    const size_t bin = 20 + json_length;
+    return {nlohmann::json::parse(bytes.substr(20, json_length)), bytes.substr(bin + 8, u32(bin))};
+}
+
+// A textured input keeps its texture in the .glb: assimp-testmodels' duck (its TGA texture
+// beside the Collada file) in 6 pieces exports one image, stored in the binary chunk as PNG
+// (glTF allows PNG and JPEG only) that decodes to the texture's 512 x 512, a texture naming it,
+// an outer material whose baseColorTexture resolves to it, outer primitives with TEXCOORD_0
+// using that material, fracture primitives without; and the Khronos validator finds no error.
+TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
+    const std::string duck = "/usr/share/assimp/models/Collada/duck.dae";
+    if (!fs::exists(duck)) GTEST_SKIP() << duck << " is missing (fix: scripts/install-deps.sh)";
+    MeshSettings mesh;
+    mesh.path = duck;
+    mesh.size = 0.2;
+    PrescoreSettings settings;
+    settings.pieces = 6;
+    settings.resolution = 12;
+    const Model m = prescore(mesh, settings, nullptr);
+    TempDir dir;
+    export_glb(m, test_trajectory(m, 3, false), dir.file("duck.glb"));
+    std::ifstream in(dir.file("duck.glb"), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto [j, bin] = glb_chunks(bytes);
+    ASSERT_EQ(j["images"].size(), 1u);
+    const auto& image = j["images"][0];
+    EXPECT_EQ(image["mimeType"], "image/png");
+    const auto& view = j["bufferViews"][image["bufferView"].get<size_t>()];
+    const std::string png = bin.substr(view.value("byteOffset", size_t(0)), view["byteLength"].get<size_t>());
+    std::string why;
+    const auto decoded = decode_image(png, &why);
+    ASSERT_TRUE(decoded) << why;
+    EXPECT_EQ(decoded->width, 512u);
+    EXPECT_EQ(decoded->height, 512u);
+    ASSERT_EQ(j["textures"].size(), 1u);
+    EXPECT_EQ(j["textures"][0]["source"], 0);
+    std::set<size_t> textured_materials;
+    for (size_t i = 0; i < j["materials"].size(); ++i) {
+        const auto& pbr = j["materials"][i]["pbrMetallicRoughness"];
+        if (pbr.contains("baseColorTexture")) {
+            EXPECT_EQ(pbr["baseColorTexture"]["index"], 0);
+            textured_materials.insert(i);
+        }
+    }
+    ASSERT_EQ(textured_materials.size(), 1u);
+    size_t with_uv = 0, without_uv = 0;
+    for (const auto& mesh_json : j["meshes"])
+        for (const auto& p : mesh_json["primitives"]) {
+            const bool uv = p["attributes"].contains("TEXCOORD_0");
+            EXPECT_EQ(uv, textured_materials.count(p["material"].get<size_t>()) == 1);
+            (uv ? with_uv : without_uv) += 1;
+        }
+    EXPECT_EQ(with_uv, m.pieces.size());  // every piece shows some of the duck's outside
+    EXPECT_GT(without_uv, 0u);            // and its fracture faces
+    ::testing::Test::RecordProperty("glb_bytes", std::to_string(bytes.size()));
+
+    const auto node = find_program("node");
+    const auto modules = validator_modules();
+    if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
+    std::string out;
+    ASSERT_EQ(validator_errors(*node, *modules, dir.file("duck.glb"), &out), 0) << out;
+    std::cout << "gltf-validator (duck): " << out.substr(0, out.find('\n')) << "\n";
 }
 
 }  // namespace
