@@ -1,5 +1,5 @@
 // The input's textures (core/model.h Material::texture, the encoded image file) for drawing:
-// decoded with stb_image (PNG, JPEG, TGA, BMP; Debian's libstb), and uploaded to GL as sRGB
+// decoded with stb_image (meshio/image_decode.h), and uploaded to GL as sRGB
 // textures with mipmaps, so that sampling decodes them to linear light (trilinear filtering,
 // repeat wrapping, as glTF's default sampler).
 #pragma once
@@ -10,20 +10,10 @@
 #include <vector>
 
 #include "core/model.h"
+#include "meshio/image_decode.h"
 #include "render/mesh_builder.h"
 
 namespace shatter {
-
-struct DecodedImage {
-    uint32_t width = 0, height = 0;
-    std::vector<uint8_t> rgba;  // sRGB RGBA8, the file's top row first
-};
-
-// nullopt, with `why` set, when the bytes are not an image stb_image reads.
-std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why);
-
-// The mean colour of an image in linear light (alpha ignored).
-Colour mean_linear_colour(const DecodedImage& image);
 
 // How each material of `model` is drawn (mesh_builder.h MaterialLook), and the decoded images
 // its textures index into `images`. A texture that does not decode is logged as a warning
