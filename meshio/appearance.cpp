@@ -61,7 +61,10 @@ Material read_material(const aiScene& scene, const aiMaterial& m, unsigned index
     aiString name;
     out.name = m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : fmt::format("material_{}", index);
     aiColor4D c(1, 1, 1, 1);
-    if (m.Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || m.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
+    // assimp's default material (grey 0.6, made for meshes that name none) is white here: such a
+    // mesh shows its vertex colours as they are, or nothing beyond its shape (Appearance::plain).
+    if (out.name == AI_DEFAULT_MATERIAL_NAME) {
+    } else if (m.Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || m.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
         out.base_colour = {c.r, c.g, c.b, c.a};
         for (float& x : out.base_colour) x = std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 1.0f;
     }

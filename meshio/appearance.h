@@ -7,7 +7,7 @@
 // triangles lie exactly where load_mesh's do (in the file's units: the caller scales both
 // alike). Vertices are not joined: a vertex on a UV seam or a material boundary keeps one copy
 // per side. Each material's base colour is AI_MATKEY_BASE_COLOR (glTF) or else the diffuse
-// colour, and its base colour texture the first BASE_COLOR or DIFFUSE texture: an embedded one
+// colour (white for assimp's default material), and its base colour texture the first BASE_COLOR or DIFFUSE texture: an embedded one
 // ("*0" in glTF binaries, compressed: its file's bytes) or a file named relative to the mesh
 // file. A texture that cannot be found or read is a warning (in `warnings`), not an error: the
 // material keeps its base colour.

@@ -95,7 +95,7 @@ aiMaterial* make_material(const std::string& name, const Colour& c) {
 // Vertices as an aiMesh: a triangle soup (three vertices per triangle, as render/mesh_builder's
 // flat vertices are) when `indices` is null, else the triangles `indices` names (three each).
 aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsigned material,
-                  const uint32_t* indices = nullptr, size_t index_count = 0, bool uv = false) {
+                  const uint32_t* indices = nullptr, size_t index_count = 0, bool uv = false, bool colour = false) {
     auto* m = new aiMesh();
     m->mName = aiString(name);
     m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -111,6 +111,10 @@ aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsign
         m->mNumUVComponents[0] = 2;
         m->mTextureCoords[0] = new aiVector3D[count];
         for (size_t i = 0; i < count; ++i) m->mTextureCoords[0][i] = aiVector3D(v[i].uv[0], 1.0f - v[i].uv[1], 0);
+    }
+    if (colour) {  // COLOR_0: the vertices' colours, linear (their material's factor is then white)
+        m->mColors[0] = new aiColor4D[count];
+        for (size_t i = 0; i < count; ++i) m->mColors[0][i] = aiColor4D(v[i].colour[0], v[i].colour[1], v[i].colour[2], 1.0f);
     }
     m->mNumFaces = static_cast<unsigned>((indices ? index_count : count) / 3);
     m->mFaces = new aiFace[m->mNumFaces];
@@ -146,14 +150,17 @@ struct SceneParts {
     }
     // The glTF material of model material `m` for faces of `kind`: outer faces its base colour
     // factor and texture, fracture and cavity faces render's colours for them (untextured).
-    unsigned model_material(const Model& model, uint32_t m, FaceKind kind, const RenderSettings& look) {
+    // `vertex_colours`: the outer faces' colours are their vertices' (COLOR_0, base colour
+    // included), so the outer material's factor is white.
+    unsigned model_material(const Model& model, uint32_t m, FaceKind kind, const RenderSettings& look, bool vertex_colours) {
         const std::string name = fmt::format("{}_{}", model.materials[m].name.empty() ? fmt::format("material_{}", m)
                                                                                       : model.materials[m].name,
                                              kind_name(kind));
         auto [it, added] = material_index.try_emplace(fmt::format("{}#{}", m, kind_name(kind)), unsigned(materials.size()));
         if (!added) return it->second;
         const MaterialLook& l = looks[m];
-        aiMaterial* mat = make_material(name, kind == FaceKind::Outer ? l.base : face_colour(l.mean, kind, look));
+        const Colour outer = vertex_colours ? Colour{1, 1, 1} : l.base;
+        aiMaterial* mat = make_material(name, kind == FaceKind::Outer ? outer : face_colour(l.mean, kind, look));
         if (kind == FaceKind::Outer && texture_of[m] >= 0) {
             const aiString path(fmt::format("*{}", texture_of[m]));
             mat->AddProperty(&path, AI_MATKEY_TEXTURE(aiTextureType_DIFFUSE, 0));
@@ -174,6 +181,13 @@ struct SceneParts {
     }
 };
 
+// Whether the model's render surfaces carry the input's vertex colours (then every painted one does).
+bool model_has_vertex_colours(const Model& model) {
+    for (const Piece& p : model.pieces)
+        if (p.render && !p.render->colour.empty()) return true;
+    return false;
+}
+
 // A piece's node: one mesh per face kind present (per kind and material when its render surface
 // has the input's materials), vertices about its centre of mass: its render surface with its
 // normals when it has one (outer faces smooth), else its tet surface, flat.
@@ -181,6 +195,7 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
     const Piece& piece = model.pieces[id];
     const IndexedVertices all = piece_mesh(piece, id, look, parts.looks);
     const bool by_material = !all.material.empty();
+    const bool vertex_colours = by_material && model_has_vertex_colours(model);
     const std::vector<FaceKind>& kinds = piece_mesh_kinds(piece);
     const std::string name = fmt::format("piece_{}", id);
     std::vector<unsigned> mesh_ids;
@@ -203,7 +218,7 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
             if (part.indices.empty()) continue;
             // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
             const unsigned material =
-                by_material ? parts.model_material(model, m, kind, look)
+                by_material ? parts.model_material(model, m, kind, look, vertex_colours)
                             : parts.material(look.colours == Colours::Palette ? fmt::format("palette_{}_{}", id % 36, kind_name(kind))
                                                                               : fmt::format("material_{}", kind_name(kind)),
                                              face_colour(piece_base_colour(id, look), kind, look));
@@ -211,7 +226,8 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
             const std::string mesh_name = by_material ? fmt::format("{}_{}_{}", name, kind_name(kind), m)
                                                       : fmt::format("{}_{}", name, kind_name(kind));
             parts.meshes.push_back(make_mesh(mesh_name, part.vertices.data(), part.vertices.size(), material,
-                                             part.indices.data(), part.indices.size(), textured));
+                                             part.indices.data(), part.indices.size(), textured,
+                                             vertex_colours && kind == FaceKind::Outer));
         }
     parts.node(name, mesh_ids);
 }

@@ -591,3 +591,69 @@ TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
 
 }  // namespace
 }  // namespace shatter
+
+namespace shatter {
+namespace {
+
+// A 10 cm cube as an ASCII PLY whose bottom corners are red and top corners blue.
+std::string coloured_cube_ply() {
+    std::string s = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\n"
+                    "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 8; ++i)
+        s += fmt::format("{} {} {} {}\n", i & 1 ? 0.1 : 0.0, i & 2 ? 0.1 : 0.0, i & 4 ? 0.1 : 0.0,
+                         i & 2 ? "0 0 255" : "255 0 0");
+    // Outward triangles of the six faces (corner i at x = bit 0, y = bit 1, z = bit 2).
+    for (const char* f : {"0 2 3", "0 3 1", "4 5 7", "4 7 6", "0 1 5", "0 5 4", "2 6 7", "2 7 3", "0 4 6", "0 6 2",
+                          "1 3 7", "1 7 5"})
+        s += fmt::format("3 {}\n", f);
+    return s;
+}
+
+// Vertex colours reach the .glb: every outer primitive of a cube whose PLY has vertex colours
+// carries COLOR_0 (red at the bottom, blue at the top, so some of each), its material white;
+// fracture primitives none; the validator finds no error.
+TEST(GlbExport, AnInputsVertexColoursBecomeColor0) {
+    TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write("cube.ply", coloured_cube_ply());
+    PrescoreSettings settings;
+    settings.pieces = 2;
+    settings.resolution = 4;
+    const Model m = prescore(mesh, settings, nullptr);
+    ASSERT_FALSE(m.materials.empty());
+    for (const Piece& p : m.pieces) ASSERT_EQ(p.render->colour.size(), p.render->vertices.size());
+    export_glb(m, test_trajectory(m, 3, false), dir.file("cube.glb"));
+    Imported g(dir.file("cube.glb"));
+    ASSERT_TRUE(g.scene);
+    size_t coloured = 0, plain = 0;
+    double reddest = 0, bluest = 0;
+    for (unsigned i = 0; i < g.scene->mNumMeshes; ++i) {
+        const aiMesh* mesh_i = g.scene->mMeshes[i];
+        if (!mesh_i->HasVertexColors(0)) {
+            ++plain;
+            continue;
+        }
+        ++coloured;
+        const Colour base = g.base_colour(mesh_i);
+        for (float c : base) EXPECT_NEAR(c, 1.0, 1e-6);
+        for (unsigned v = 0; v < mesh_i->mNumVertices; ++v) {
+            const aiColor4D& c = mesh_i->mColors[0][v];
+            reddest = std::max(reddest, double(c.r - c.b));
+            bluest = std::max(bluest, double(c.b - c.r));
+        }
+    }
+    EXPECT_EQ(coloured, m.pieces.size());
+    EXPECT_GT(plain, 0u);  // the fracture faces
+    EXPECT_GT(reddest, 0.99);
+    EXPECT_GT(bluest, 0.99);
+
+    const auto node = find_program("node");
+    const auto modules = validator_modules();
+    if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
+    std::string out;
+    ASSERT_EQ(validator_errors(*node, *modules, dir.file("cube.glb"), &out), 0) << out;
+}
+
+}  // namespace
+}  // namespace shatter
