@@ -1,5 +1,8 @@
 #include "render/texture.h"
 
+#include <algorithm>
+
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "render/gl.h"
@@ -14,13 +17,19 @@ std::vector<MaterialLook> material_looks(const Model& model, std::vector<Decoded
         look.mean = look.base;
         if (!m.texture.empty()) {
             std::string why;
-            if (std::optional<DecodedImage> image = decode_image(m.texture, &why)) {
+            std::optional<DecodedImage> image = decode_image(m.texture, &why);
+            if (image && std::max(image->width, image->height) > kMaxTextureSide) {
+                why = fmt::format("{} x {} texels, more than the {} a side render takes", image->width, image->height,
+                                  kMaxTextureSide);
+                image.reset();
+            }
+            if (image) {
                 const Colour mean = mean_linear_colour(*image);
                 for (int k = 0; k < 3; ++k) look.mean[size_t(k)] *= mean[size_t(k)];
                 look.texture = int32_t(images->size());
                 images->push_back(std::move(*image));
             } else {
-                spdlog::warn("material '{}': its texture '{}' ({} bytes) does not decode ({}); drawn in its base colour",
+                spdlog::warn("material '{}': its texture '{}' ({} bytes) is not drawn ({}); drawn in its base colour",
                              m.name, m.texture_name, m.texture.size(), why);
             }
         }

@@ -15,9 +15,14 @@
 
 namespace shatter {
 
+// The largest texture side render uploads (unit: texels): llvmpipe takes 16,384, but one such
+// RGBA texture with its mipmaps is 1.4 GB.
+inline constexpr uint32_t kMaxTextureSide = 8192;
+
 // How each material of `model` is drawn (mesh_builder.h MaterialLook), and the decoded images
-// its textures index into `images`. A texture that does not decode is logged as a warning
-// (once per material) and its material drawn in its base colour; never an error.
+// its textures index into `images`. A texture that does not decode, or is larger than
+// kMaxTextureSide, is logged as a warning (once per material) and its material drawn in its
+// base colour; never an error.
 std::vector<MaterialLook> material_looks(const Model& model, std::vector<DecodedImage>* images);
 
 // A decoded image as a GL texture (needs a current context).
