@@ -125,10 +125,12 @@ private:
             const aiVector3D& v = mesh.mVertices[i];
             const Eigen::Vector4d p = transform * Vec3(v.x, v.y, v.z).homogeneous();
             out_.mesh.vertices.push_back(p.head<3>() / p.w());
-            uv.push_back(has_uv ? std::array<float, 2>{mesh.mTextureCoords[0][i].x, mesh.mTextureCoords[0][i].y}
+            // Non-finite values (a damaged file) become (0, 0) and white: the model holds finite numbers only.
+            auto finite = [](float x, float otherwise) { return std::isfinite(x) ? x : otherwise; };
+            uv.push_back(has_uv ? std::array<float, 2>{finite(mesh.mTextureCoords[0][i].x, 0), finite(mesh.mTextureCoords[0][i].y, 0)}
                                 : std::array<float, 2>{0, 0});
             const aiColor4D c = has_colour ? mesh.mColors[0][i] : aiColor4D(1, 1, 1, 1);
-            colour.push_back({c.r, c.g, c.b, c.a});
+            colour.push_back({finite(c.r, 1), finite(c.g, 1), finite(c.b, 1), finite(c.a, 1)});
         }
         any_uv = any_uv || has_uv;
         any_colour = any_colour || has_colour;
@@ -156,10 +158,11 @@ Appearance import_in_process(const std::string& path) {
                                                             aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                                             aiComponent_LIGHTS | aiComponent_CAMERAS);
     const aiScene* scene = importer.ReadFile(path, 0);
-    if (scene == nullptr) throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), "see load_mesh");
+    const std::string fix = "check that the file is a complete mesh in a format assimp reads";
+    if (scene == nullptr) throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), fix);
     scene = importer.ApplyPostProcessing(aiProcess_RemoveComponent);
     if (scene != nullptr) scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate);
-    if (scene == nullptr) throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), "see load_mesh");
+    if (scene == nullptr) throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), fix);
     Appearance out;
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
         out.materials.push_back(read_material(*scene, *scene->mMaterials[m], m, path, out.warnings));

@@ -234,7 +234,13 @@ void add_appearance(Model& model, const std::string& path, double scale) {
     }
     for (const std::string& w : look.warnings) spdlog::warn("appearance: {}", w);
     if (look.plain()) return;
-    for (Vec3& v : look.mesh.vertices) v *= scale;
+    for (Vec3& v : look.mesh.vertices) {
+        v *= scale;
+        if (!v.allFinite()) {  // load_mesh refuses such a file; a second reading must not differ
+            spdlog::warn("appearance: not used, a vertex is not finite; the pieces are drawn in one colour");
+            return;
+        }
+    }
     transfer_appearance(model, look);
     size_t textures = 0;
     for (const Material& m : model.materials) textures += !m.texture.empty();
