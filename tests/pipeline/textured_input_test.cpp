@@ -2,7 +2,8 @@
 // texture beside it) through prescore and render. The texture's mean colour is yellow (hue
 // ~50 degrees); with colours = "input" most of the duck's pixels have the texture's hue, with
 // colours = "material" (one beige colour) none does, and with the texture file missing the duck
-// is drawn in its material's base colour (a warning, not an error).
+// is drawn in its material's base colour (a warning, not an error). A PLY's vertex colours show
+// too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -115,6 +116,37 @@ TEST(TexturedInput, WithoutItsTextureFileTheDuckIsDrawnInItsBaseColour) {
     s.colours = Colours::Input;
     const Image img = render(model, s);
     EXPECT_LT(pixels_of_hue(img, 52), 20u);
+}
+
+// Vertex colours: a PLY cube whose bottom corners are red and top corners blue is drawn with
+// both, where colours = "material" shows neither.
+TEST(TexturedInput, VertexColoursReachTheFrames) {
+    std::string ply = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 8; ++i)
+        ply += std::string(i & 1 ? "0.1 " : "0 ") + (i & 2 ? "0.1 " : "0 ") + (i & 4 ? "0.1 " : "0 ") +
+               (i & 2 ? "0 0 255\n" : "255 0 0\n");
+    for (const char* f : {"0 2 3", "0 3 1", "4 5 7", "4 7 6", "0 1 5", "0 5 4", "2 6 7", "2 7 3", "0 4 6", "0 6 2",
+                          "1 3 7", "1 7 5"})
+        ply += std::string("3 ") + f + "\n";
+    testing_support::TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write("cube.ply", ply);
+    PrescoreSettings settings;
+    settings.pieces = 2;
+    settings.resolution = 4;
+    const Model model = prescore(mesh, settings, nullptr);
+    RenderSettings s = testing_support::small_render_settings();
+    s.colours = Colours::Input;
+    const Image input = render(model, s);
+    s.colours = Colours::Material;
+    const Image material = render(model, s);
+    EXPECT_GT(pixels_of_hue(input, 0), 100u);    // red (measured 209: the camera looks down on the blue top)
+    EXPECT_GT(pixels_of_hue(input, 240), 700u);  // blue (measured 1,460)
+    EXPECT_EQ(pixels_of_hue(material, 0) + pixels_of_hue(material, 240), 0u);
+    ::testing::Test::RecordProperty("red_pixels", std::to_string(pixels_of_hue(input, 0)));
+    ::testing::Test::RecordProperty("blue_pixels", std::to_string(pixels_of_hue(input, 240)));
 }
 
 // A texture that does not decode is a warning: the material keeps its base colour.
