@@ -4,6 +4,10 @@
 // only on its own poses and its camera: no state carries from one frame to the next, so frame f
 // is the same bytes whichever range rendered it.
 //
+// A piece with the input's textures (colours = "input", render/texture.h) is drawn as one item
+// per texture its triangles sample (the textures uploaded once, sampled on unit 1), and casts
+// its shadow once.
+//
 // Per frame: shadow pass (depth from the key light, front faces culled, polygon offset) ->
 // scene pass (linear light, MSAA, encoded to sRGB8 by GL on write) -> resolve (glBlitFramebuffer:
 // samples decoded, averaged in linear light, encoded) -> glReadPixels of sRGB bytes. Needs a
