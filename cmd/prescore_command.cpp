@@ -106,7 +106,7 @@ int run(const PrescoreFlags& flags) {
                    before, after, before > 0 ? 100 * (after / before - 1) : 0.0);
     }
     fmt::print("time:     {:.3f}s ({})\n", seconds, phases);
-    fmt::print("wrote:    {} (model), {} (pieces, one colour each)\n", out, ply);
+    fmt::print("wrote:    {} (model), {} (pieces, {})\n", out, ply, model.materials.empty() ? "one colour each" : "in the input's colours");
     return 0;
 }
 

@@ -3,6 +3,7 @@
 // constraints that join neighbouring pieces. Stored as a versioned binary (docs/formats.md).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -36,6 +37,25 @@ struct RenderSurface {
     std::vector<Tri> triangles;  // outward oriented
     std::vector<FaceKind> kinds; // one per triangle
     bool fell_back = false;      // the tet surface, flat shaded (the cut failed for this piece)
+    // The input's appearance (model version 3; each empty when the input has none): texture
+    // coordinates (channel 0, assimp's convention: v up, (0, 0) the image's bottom left) and
+    // colours (linear RGBA) per vertex, taken on outer faces from the input triangle nearest to
+    // the face (vertices are split where a UV seam or a material boundary runs; fracture and
+    // cavity faces carry (0, 0) and white), and per triangle an index into Model::materials: on
+    // outer faces the nearest input triangle's material, on fracture and cavity faces the
+    // material of the input nearest to them (the piece's inside is drawn from it).
+    std::vector<std::array<float, 2>> uv;
+    std::vector<std::array<float, 4>> colour;
+    std::vector<uint32_t> material;
+};
+
+// One material of the input (meshio/appearance.h): what its outer faces are drawn with.
+struct Material {
+    std::string name;
+    std::array<float, 4> base_colour = {1, 1, 1, 1};  // linear RGBA, multiplies the texture
+    std::string texture;       // the base colour texture as the encoded image file (PNG, JPEG, TGA, ...); empty: none
+    std::string texture_mime;  // "image/png", "image/jpeg", ... (by the file's first bytes)
+    std::string texture_name;  // where it came from (a file name, or "*0" for an embedded one), for messages
 };
 
 struct MassProperties {
@@ -78,6 +98,7 @@ struct Model {
     std::vector<uint32_t> tet_piece;  // piece of each tet
     std::vector<Piece> pieces;
     std::vector<Constraint> constraints;  // sorted by (piece_a, piece_b, vertex)
+    std::vector<Material> materials;      // the input's, named by RenderSurface::material (version 3)
 };
 
 // The radius of a piece's surface about its centre of mass (unit: m): the farthest any point of

@@ -54,6 +54,43 @@ void put_render_surface(ByteWriter& w, const std::optional<RenderSurface>& rs) {
     w.u8(rs->fell_back ? 1 : 0);
 }
 
+// Version 3: after the render surface's fell_back byte, a u8 of flags (1: uv, 2: colour, 4:
+// material) and the arrays they announce (docs/formats.md).
+void put_appearance(ByteWriter& w, const RenderSurface& rs) {
+    w.u8(uint8_t((rs.uv.empty() ? 0 : 1) | (rs.colour.empty() ? 0 : 2) | (rs.material.empty() ? 0 : 4)));
+    for (const auto& uv : rs.uv) w.f32(uv[0]), w.f32(uv[1]);
+    for (const auto& c : rs.colour)
+        for (float x : c) w.f32(x);
+    for (uint32_t m : rs.material) w.u32(m);
+}
+
+void get_appearance(ByteReader& r, RenderSurface& s) {
+    const uint8_t flags = r.u8();
+    if (flags > 7) r.fail("render surface appearance flags " + std::to_string(flags) + " (0 to 7)");
+    auto finite = [&](const char* what) {
+        const float x = r.f32();
+        if (!std::isfinite(x)) r.fail(std::string(what) + " is not a finite number");
+        return x;
+    };
+    const size_t nv = s.vertices.size();
+    if (flags & 1) {
+        if (r.remaining() / 8 < nv) r.fail("the render surface's texture coordinates do not fit in the file");
+        s.uv.resize(nv);
+        for (auto& uv : s.uv) uv = {finite("a texture coordinate"), finite("a texture coordinate")};
+    }
+    if (flags & 2) {
+        if (r.remaining() / 16 < nv) r.fail("the render surface's vertex colours do not fit in the file");
+        s.colour.resize(nv);
+        for (auto& c : s.colour)
+            for (float& x : c) x = finite("a vertex colour");
+    }
+    if (flags & 4) {
+        if (r.remaining() / 4 < s.triangles.size()) r.fail("the render surface's materials do not fit in the file");
+        s.material.resize(s.triangles.size());
+        for (uint32_t& m : s.material) m = r.u32();  // checked against the material table once it is read
+    }
+}
+
 std::optional<RenderSurface> get_render_surface(ByteReader& r) {
     const uint8_t present = r.u8();
     if (present > 1) r.fail("render surface flag " + std::to_string(present) + " (0 or 1)");
@@ -99,6 +136,7 @@ void put_piece(ByteWriter& w, const Piece& p) {
     }
     w.u8(p.connected ? 1 : 0);
     put_render_surface(w, p.render);
+    if (p.render) put_appearance(w, *p.render);
 }
 
 Piece get_piece(ByteReader& r, uint32_t tet_count, uint32_t version) {
@@ -119,6 +157,7 @@ Piece get_piece(ByteReader& r, uint32_t tet_count, uint32_t version) {
     }
     p.connected = r.u8() != 0;
     if (version >= 2) p.render = get_render_surface(r);
+    if (version >= 3 && p.render) get_appearance(r, *p.render);
     return p;
 }
 
@@ -143,6 +182,15 @@ std::string encode_model(const Model& m) {
         w.u32(c.vertex);
         w.vec3(c.pivot);
         w.f64(c.area);
+    }
+    w.u32(static_cast<uint32_t>(m.materials.size()));
+    for (const Material& mat : m.materials) {
+        w.str(mat.name);
+        for (float x : mat.base_colour) w.f32(x);
+        w.u64(mat.texture.size());
+        w.bytes(mat.texture);
+        w.str(mat.texture_mime);
+        w.str(mat.texture_name);
     }
     StageHeader h{std::string(kModelMagic), kModelVersion, m.producer, m.settings_json};
     return pack_stage_file(h, w.data());
@@ -178,6 +226,27 @@ Model decode_model(std::string_view bytes, const std::string& source) {
         c.vertex = r.index(nv, "constraint vertex");
         c.pivot = r.finite_vec3("constraint pivot");
         c.area = r.finite_f64("constraint area");
+    }
+    if (f.header.version >= 3) {
+        m.materials.resize(r.count(29, "materials"));
+        for (Material& mat : m.materials) {
+            mat.name = r.str(4096);
+            for (float& x : mat.base_colour) {
+                x = r.f32();
+                if (!std::isfinite(x)) r.fail("a material's base colour is not a finite number");
+            }
+            const uint64_t n = r.u64();
+            if (n > r.remaining()) r.fail("a material's texture claims " + std::to_string(n) + " bytes");
+            mat.texture = std::string(r.bytes(size_t(n)));
+            mat.texture_mime = r.str(256);
+            mat.texture_name = r.str(4096);
+        }
+        const uint32_t nm = static_cast<uint32_t>(m.materials.size());
+        for (size_t p = 0; p < m.pieces.size(); ++p)
+            if (m.pieces[p].render)
+                for (uint32_t i : m.pieces[p].render->material)
+                    if (i >= nm) r.fail("piece " + std::to_string(p) + "'s render surface names material " +
+                                        std::to_string(i) + " of " + std::to_string(nm));
     }
     if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the constraints");
     return m;

@@ -10,8 +10,10 @@ namespace shatter {
 
 constexpr std::string_view kModelMagic = "SHTMODEL";
 // The version written; the reader accepts 1..kModelVersion. 2: pieces may carry a render surface
-// (version 1 files read with none: their pieces are drawn with the tet surface).
-constexpr uint32_t kModelVersion = 2;
+// (version 1 files read with none: their pieces are drawn with the tet surface). 3: render
+// surfaces may carry texture coordinates, colours and materials, and the model the input's
+// materials with their textures (version 2 files read with none).
+constexpr uint32_t kModelVersion = 3;
 
 std::string encode_model(const Model& model);
 // Decodes and validates (every index in range, every number finite); throws Error(BadInput)

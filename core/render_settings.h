@@ -18,7 +18,10 @@
 
 namespace shatter {
 
-enum class ColourMode { Pieces, Material };  // pieces: the palette by piece id; material: one colour
+// What colours the pieces: input: the input's materials, textures and vertex colours (a model
+// without any: material_colour); palette: a palette colour by piece id (for reviewing pieces);
+// material: material_colour for every piece.
+enum class Colours { Input, Palette, Material };
 // The camera when the shot places none (no camera_position): "follow" frames the object at the
 // start and its fragments after, moving smoothly with them (render/camera_path.h); "whole" stays
 // fixed, framing the whole animation at once.
@@ -38,11 +41,14 @@ struct RenderSettings {
     uint32_t msaa = 4;                    // samples per pixel: 1 (off), 2 or 4
     double key_azimuth = -40;             // key light direction, from the camera's direction about +Y, positive to the right (unit: degrees)
     double key_elevation = 50;            // key light height above the horizon (unit: degrees)
-    ColourMode colour_mode = ColourMode::Pieces;
+    Colours colours = Colours::Input;
     std::array<float, 3> material_colour = {0.7084f, 0.6514f, 0.5520f};  // linear RGB ("#dbd3c4")
     // Pieces drawn in their own colour whatever the colour mode (the chain's blue end cubes):
     // (piece index, linear RGB), from [render] piece_colours = [{piece = 0, colour = "#2f5fd0"}].
     std::vector<std::pair<uint32_t, std::array<float, 3>>> piece_colours;
+    // Fracture faces in this colour (linear RGB), textured or not; unset: the colour of the
+    // material around them (its base colour times its texture's mean) tinted by fracture_tint.
+    std::optional<std::array<float, 3>> interior_colour;
     double fracture_tint = 0.55;          // fracture faces: this fraction of the way from the piece colour to white (unit: 1)
     double cavity_shade = 0.45;           // cavity faces: the piece colour times this (unit: 1)
     std::array<float, 3> background = {0.5776f, 0.6445f, 0.7231f};  // linear RGB ("#c8d2dd")
@@ -54,7 +60,7 @@ inline constexpr Limits kAzimuthLimits{-360, 360, "degrees"};
 inline constexpr Limits kElevationLimits{1, 90, "degrees"};
 inline constexpr Limits kTintLimits{0, 1, "(fraction)"};
 
-const char* to_string(ColourMode m);
+const char* to_string(Colours m);
 const char* to_string(CameraMode m);
 // "#rrggbb" (sRGB) to linear RGB; nullopt when the text is not of that form.
 std::optional<std::array<float, 3>> parse_srgb_hex(const std::string& text);

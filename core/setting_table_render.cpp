@@ -62,17 +62,34 @@ SettingsSection render_section() {
              number("key_elevation", "degrees", at(&Shot::render, &RenderSettings::key_elevation), kElevationLimits,
                     "key light height above the horizon")
                  .flag("--key-elevation"),
-             choice<ColourMode>("colour_mode", at(&Shot::render, &RenderSettings::colour_mode),
-                                {{"pieces", ColourMode::Pieces}, {"material", ColourMode::Material}},
-                                "pieces: a palette colour by piece id; material: material_colour", "a colour mode",
-                                "use \"pieces\" (palette by piece id) or \"material\" (material_colour)")
-                 .flag("--colour-mode"),
-             colour("material_colour", &RenderSettings::material_colour, "the colour of every piece in material mode")
+             choice<Colours>("colours", at(&Shot::render, &RenderSettings::colours),
+                             {{"input", Colours::Input}, {"palette", Colours::Palette}, {"material", Colours::Material}},
+                             "input: the input's materials, textures and vertex colours (material_colour when it has "
+                             "none); palette: a colour by piece id, for reviewing pieces; material: material_colour",
+                             "a colour source",
+                             "use \"input\" (the input's materials and textures), \"palette\" (a colour by piece id) or "
+                             "\"material\" (material_colour)")
+                 .flag("--colours"),
+             colour("material_colour", &RenderSettings::material_colour,
+                    "the colour of every piece with colours = \"material\", and of inputs without materials")
                  .flag("--material-colour"),
              custom("piece_colours", "piece index, sRGB", "none", "`[{piece = 0, colour = \"#2f5fd0\"}, ...]`",
                     "these pieces in these colours whatever the mode (the chain's blue end cubes)",
                     [](TomlSection& s, Shot& shot) { read_piece_colours(s, shot.render.piece_colours); })
                  .json([](const Shot& s, ojson& j) { put_piece_colours(j, s.render.piece_colours); }),
+             custom("interior_colour", "sRGB", "the outer colour, lightened by fracture_tint", "#rrggbb",
+                    "fracture faces in this colour",
+                    [](TomlSection& s, Shot& shot) {
+                        std::array<float, 3> c{};
+                        if (s.node("interior_colour")) {
+                            read_srgb_colour(s, "interior_colour", c);
+                            shot.render.interior_colour = c;
+                        }
+                    })
+                 .json([](const Shot& s, ojson& j) {
+                     if (s.render.interior_colour) j["interior_colour"] = srgb_hex(*s.render.interior_colour);
+                 })
+                 .flag("--interior-colour"),
              number("fracture_tint", "fraction", at(&Shot::render, &RenderSettings::fracture_tint), kTintLimits,
                     "fracture faces: this fraction of the way from the piece colour to white")
                  .flag("--fracture-tint"),

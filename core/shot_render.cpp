@@ -87,7 +87,14 @@ void check_render_camera(TomlSection& s, const RenderSettings& r) {
                "place the camera away from the point it looks at");
 }
 
-const char* to_string(ColourMode m) { return m == ColourMode::Pieces ? "pieces" : "material"; }
+const char* to_string(Colours m) {
+    switch (m) {
+        case Colours::Input: return "input";
+        case Colours::Palette: return "palette";
+        case Colours::Material: return "material";
+    }
+    return "input";
+}
 
 const char* to_string(CameraMode m) { return m == CameraMode::Follow ? "follow" : "whole"; }
 

@@ -283,7 +283,9 @@ LoadedMesh deserialize(const std::string& bytes) {
 // reader busy for 44 s before it failed). Under ASan imports are ~20x slower: scripts/asan.sh
 // sets SHATTER_MESH_IMPORT_TIMEOUT (seconds), which overrides this, as the test that proves the
 // deadline does.
-double import_deadline_seconds(const std::string& path) {
+}  // namespace
+
+double mesh_import_deadline_seconds(const std::string& path) {
     if (const char* env = std::getenv("SHATTER_MESH_IMPORT_TIMEOUT")) {
         char* end = nullptr;
         const double s = std::strtod(env, &end);
@@ -294,8 +296,10 @@ double import_deadline_seconds(const std::string& path) {
     return 15.0 + 10.0 * (ec ? 0.0 : double(bytes) / 1e6);
 }
 
+namespace {
+
 LoadedMesh import_isolated(const std::string& path, const std::string& format_fix) {
-    const double limit = import_deadline_seconds(path);
+    const double limit = mesh_import_deadline_seconds(path);
     try {
         return deserialize(run_isolated([&] { return serialize(import_in_process(path)); }, limit));
     } catch (const IsolatedFailure& f) {

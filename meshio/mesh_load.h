@@ -41,4 +41,8 @@ LoadedMesh load_mesh_file(const std::string& path);
 // unreadable or corrupt file, a file without triangles, or NaN/Inf coordinates.
 TriangleMesh load_mesh(const std::string& path, double scale);
 
+// How long an import of `path` in a child process may take (unit: s): 15 s plus 10 s per MB, or
+// SHATTER_MESH_IMPORT_TIMEOUT when set (mesh_load.cpp says why).
+double mesh_import_deadline_seconds(const std::string& path);
+
 }  // namespace shatter

@@ -46,6 +46,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string_view>
@@ -59,6 +60,8 @@
 #include "core/scene_settings.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
+#include "render/png_io.h"
+#include "render/texture.h"
 
 namespace shatter {
 
@@ -92,7 +95,7 @@ aiMaterial* make_material(const std::string& name, const Colour& c) {
 // Vertices as an aiMesh: a triangle soup (three vertices per triangle, as render/mesh_builder's
 // flat vertices are) when `indices` is null, else the triangles `indices` names (three each).
 aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsigned material,
-                  const uint32_t* indices = nullptr, size_t index_count = 0) {
+                  const uint32_t* indices = nullptr, size_t index_count = 0, bool uv = false, bool colour = false) {
     auto* m = new aiMesh();
     m->mName = aiString(name);
     m->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -103,6 +106,15 @@ aiMesh* make_mesh(const std::string& name, const Vertex* v, size_t count, unsign
     for (size_t i = 0; i < count; ++i) {
         m->mVertices[i] = aiVector3D(v[i].position[0], v[i].position[1], v[i].position[2]);
         m->mNormals[i] = aiVector3D(v[i].normal[0], v[i].normal[1], v[i].normal[2]);
+    }
+    if (uv) {  // TEXCOORD_0 in assimp's convention (v up; the exporter flips it to glTF's)
+        m->mNumUVComponents[0] = 2;
+        m->mTextureCoords[0] = new aiVector3D[count];
+        for (size_t i = 0; i < count; ++i) m->mTextureCoords[0][i] = aiVector3D(v[i].uv[0], 1.0f - v[i].uv[1], 0);
+    }
+    if (colour) {  // COLOR_0: the vertices' colours, linear (their material's factor is then white)
+        m->mColors[0] = new aiColor4D[count];
+        for (size_t i = 0; i < count; ++i) m->mColors[0][i] = aiColor4D(v[i].colour[0], v[i].colour[1], v[i].colour[2], 1.0f);
     }
     m->mNumFaces = static_cast<unsigned>((indices ? index_count : count) / 3);
     m->mFaces = new aiFace[m->mNumFaces];
@@ -121,15 +133,40 @@ struct SceneParts {
     std::vector<aiMaterial*> materials;
     std::map<std::string, unsigned> material_index;  // by name: a material per palette colour and kind
     std::vector<aiNode*> nodes;
+    std::vector<aiTexture*> textures;   // embedded images ("*0", "*1", ...), PNG or JPEG files
+    std::vector<MaterialLook> looks;    // of the model's materials (render/texture.h)
+    std::vector<int> texture_of;        // per model material, its embedded image, -1: none
 
     ~SceneParts() {
         for (aiMesh* m : meshes) delete m;
+        for (aiTexture* t : textures) delete t;
         for (aiMaterial* m : materials) delete m;
         for (aiNode* n : nodes) delete n;
     }
     unsigned material(const std::string& name, const Colour& c) {
         auto [it, added] = material_index.try_emplace(name, static_cast<unsigned>(materials.size()));
         if (added) materials.push_back(make_material(name, c));
+        return it->second;
+    }
+    // The glTF material of model material `m` for faces of `kind`: outer faces its base colour
+    // factor and texture, fracture and cavity faces render's colours for them (untextured).
+    // `vertex_colours`: the outer faces' colours are their vertices' (COLOR_0, base colour
+    // included), so the outer material's factor is white.
+    unsigned model_material(const Model& model, uint32_t m, FaceKind kind, const RenderSettings& look, bool vertex_colours) {
+        const std::string name = fmt::format("{}_{}", model.materials[m].name.empty() ? fmt::format("material_{}", m)
+                                                                                      : model.materials[m].name,
+                                             kind_name(kind));
+        auto [it, added] = material_index.try_emplace(fmt::format("{}#{}", m, kind_name(kind)), unsigned(materials.size()));
+        if (!added) return it->second;
+        const MaterialLook& l = looks[m];
+        const Colour outer = vertex_colours ? Colour{1, 1, 1} : l.base;
+        aiMaterial* mat = make_material(name, kind == FaceKind::Outer ? outer : face_colour(l.mean, kind, look));
+        if (kind == FaceKind::Outer && texture_of[m] >= 0) {
+            const aiString path(fmt::format("*{}", texture_of[m]));
+            mat->AddProperty(&path, AI_MATKEY_TEXTURE(aiTextureType_DIFFUSE, 0));
+            mat->AddProperty(&path, AI_MATKEY_TEXTURE(aiTextureType_BASE_COLOR, 0));
+        }
+        materials.push_back(mat);
         return it->second;
     }
     aiNode* node(const std::string& name, const std::vector<unsigned>& mesh_ids) {
@@ -144,35 +181,85 @@ struct SceneParts {
     }
 };
 
-// A piece's node: one mesh per face kind present, vertices about its centre of mass: its render
-// surface with its normals when it has one (outer faces smooth), else its tet surface, flat.
-void add_piece(SceneParts& parts, const Piece& piece, uint32_t id) {
-    const RenderSettings look;  // render's default colours: palette base, fracture tint, cavity shade
-    const IndexedVertices all = piece_mesh(piece, id, look);
+// Whether the model's render surfaces carry the input's vertex colours (then every painted one does).
+bool model_has_vertex_colours(const Model& model) {
+    for (const Piece& p : model.pieces)
+        if (p.render && !p.render->colour.empty()) return true;
+    return false;
+}
+
+// A piece's node: one mesh per face kind present (per kind and material when its render surface
+// has the input's materials), vertices about its centre of mass: its render surface with its
+// normals when it has one (outer faces smooth), else its tet surface, flat.
+void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderSettings& look) {
+    const Piece& piece = model.pieces[id];
+    const IndexedVertices all = piece_mesh(piece, id, look, parts.looks);
+    const bool by_material = !all.material.empty();
+    const bool vertex_colours = by_material && model_has_vertex_colours(model);
     const std::vector<FaceKind>& kinds = piece_mesh_kinds(piece);
     const std::string name = fmt::format("piece_{}", id);
     std::vector<unsigned> mesh_ids;
-    for (FaceKind kind : {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity}) {
-        // The triangles of this kind, their vertices renumbered in first use.
-        IndexedVertices part;
-        std::vector<uint32_t> index(all.vertices.size(), UINT32_MAX);
-        for (size_t t = 0; t < kinds.size(); ++t) {
-            if (kinds[t] != kind) continue;
-            for (int k = 0; k < 3; ++k) {
-                const uint32_t v = all.indices[3 * t + size_t(k)];
-                if (index[v] == UINT32_MAX) index[v] = static_cast<uint32_t>(part.vertices.size()), part.vertices.push_back(all.vertices[v]);
-                part.indices.push_back(index[v]);
+    const uint32_t materials = by_material ? uint32_t(model.materials.size()) : 1;
+    for (FaceKind kind : {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity})
+        for (uint32_t m = 0; m < materials; ++m) {
+            // The triangles of this kind (and material), their vertices renumbered in first use.
+            IndexedVertices part;
+            std::vector<uint32_t> index(all.vertices.size(), UINT32_MAX);
+            bool textured = false;
+            for (size_t t = 0; t < kinds.size(); ++t) {
+                if (kinds[t] != kind || (by_material && all.material[t] != m)) continue;
+                textured = textured || (!all.texture.empty() && all.texture[t] >= 0);
+                for (int k = 0; k < 3; ++k) {
+                    const uint32_t v = all.indices[3 * t + size_t(k)];
+                    if (index[v] == UINT32_MAX) index[v] = static_cast<uint32_t>(part.vertices.size()), part.vertices.push_back(all.vertices[v]);
+                    part.indices.push_back(index[v]);
+                }
             }
+            if (part.indices.empty()) continue;
+            // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
+            const unsigned material =
+                by_material ? parts.model_material(model, m, kind, look, vertex_colours)
+                            : parts.material(look.colours == Colours::Palette ? fmt::format("palette_{}_{}", id % 36, kind_name(kind))
+                                                                              : fmt::format("material_{}", kind_name(kind)),
+                                             face_colour(piece_base_colour(id, look), kind, look));
+            mesh_ids.push_back(static_cast<unsigned>(parts.meshes.size()));
+            const std::string mesh_name = by_material ? fmt::format("{}_{}_{}", name, kind_name(kind), m)
+                                                      : fmt::format("{}_{}", name, kind_name(kind));
+            parts.meshes.push_back(make_mesh(mesh_name, part.vertices.data(), part.vertices.size(), material,
+                                             part.indices.data(), part.indices.size(), textured,
+                                             vertex_colours && kind == FaceKind::Outer));
         }
-        if (part.indices.empty()) continue;
-        // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
-        const unsigned material = parts.material(fmt::format("palette_{}_{}", id % 36, kind_name(kind)),
-                                                 face_colour(piece_base_colour(id, look), kind, look));
-        mesh_ids.push_back(static_cast<unsigned>(parts.meshes.size()));
-        parts.meshes.push_back(make_mesh(fmt::format("{}_{}", name, kind_name(kind)), part.vertices.data(),
-                                         part.vertices.size(), material, part.indices.data(), part.indices.size()));
-    }
     parts.node(name, mesh_ids);
+}
+
+// The model's textures as embedded images: PNG and JPEG files as they are, any other format
+// (TGA, BMP) decoded and stored as PNG (glTF 2.0 allows those two only).
+void add_textures(SceneParts& parts, const Model& model) {
+    std::vector<DecodedImage> images;
+    parts.looks = material_looks(model, &images);
+    for (size_t m = 0; m < model.materials.size(); ++m) {
+        const Material& mat = model.materials[m];
+        const int32_t decoded = parts.looks[m].texture;
+        if (decoded < 0) {
+            parts.texture_of.push_back(-1);
+            continue;
+        }
+        std::string bytes = mat.texture, hint = mat.texture_mime == "image/jpeg" ? "jpg" : "png";
+        if (mat.texture_mime != "image/png" && mat.texture_mime != "image/jpeg") {
+            const DecodedImage& image = images[size_t(decoded)];
+            bytes = encode_png(image.rgba.data(), image.width, image.height, 4, size_t(image.width) * 4);
+        }
+        auto* tex = new aiTexture();
+        tex->mWidth = unsigned(bytes.size());
+        tex->mHeight = 0;
+        tex->pcData = new aiTexel[(bytes.size() + sizeof(aiTexel) - 1) / sizeof(aiTexel)];
+        std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(tex->pcData));
+        std::copy(hint.begin(), hint.end(), tex->achFormatHint);
+        tex->mFilename = aiString(bytes == mat.texture ? mat.texture_name
+                                                       : std::filesystem::path(mat.texture_name).stem().string() + ".png");
+        parts.texture_of.push_back(int(parts.textures.size()));
+        parts.textures.push_back(tex);
+    }
 }
 
 void add_prop(SceneParts& parts, const KinematicSettings& k, uint32_t i, const std::string& where) {
@@ -262,11 +349,13 @@ aiAnimation* make_animation(const Trajectory& t, const std::vector<aiNode*>& bod
     return anim;
 }
 
+// `look`: render's colours (colours, material_colour, interior_colour, fracture_tint, cavity_shade).
 std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, const std::vector<Camera>& cameras,
-                                     const std::string& where) {
+                                     const std::string& where, const RenderSettings& look) {
     const std::vector<KinematicSettings> props = trajectory_props(t, where);
     SceneParts parts;
-    for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model.pieces[i], i);
+    add_textures(parts, model);
+    for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model, i, look);
     for (uint32_t i = 0; i < props.size(); ++i) add_prop(parts, props[i], i, where);
     for (uint32_t b = 0; b < parts.nodes.size(); ++b) parts.nodes[b]->mTransformation = pose_matrix(t.pose(0, b));
     const std::vector<aiNode*> bodies = parts.nodes;
@@ -290,6 +379,12 @@ std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, co
     scene->mMaterials = new aiMaterial*[parts.materials.size()];
     std::copy(parts.materials.begin(), parts.materials.end(), scene->mMaterials);
     parts.materials.clear();
+    if (!parts.textures.empty()) {
+        scene->mNumTextures = static_cast<unsigned>(parts.textures.size());
+        scene->mTextures = new aiTexture*[parts.textures.size()];
+        std::copy(parts.textures.begin(), parts.textures.end(), scene->mTextures);
+        parts.textures.clear();
+    }
     return scene;
 }
 
@@ -370,7 +465,7 @@ void export_glb(const Model& model, const Trajectory& trajectory, const std::str
         }
         cameras = make_camera_path(rs, *camera);
     }
-    const std::unique_ptr<aiScene> scene = build_scene(model, trajectory, cameras, glb_path);
+    const std::unique_ptr<aiScene> scene = build_scene(model, trajectory, cameras, glb_path, camera ? *camera : RenderSettings{});
 
     Assimp::Exporter exporter;
     const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), "glb2");

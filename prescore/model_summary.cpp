@@ -73,6 +73,13 @@ nlohmann::ordered_json model_summary(const Model& m) {
     for (const Piece& p : m.pieces)
         if (p.render) ++with_render, render_triangles += p.render->triangles.size(), fell_back += p.render->fell_back;
     j["render_surfaces"] = {{"pieces", with_render}, {"triangles", render_triangles}, {"fell_back", fell_back}};
+    nlohmann::ordered_json materials = nlohmann::ordered_json::array();
+    for (const Material& mat : m.materials)
+        materials.push_back({{"name", mat.name},
+                             {"texture", mat.texture_name},
+                             {"texture_type", mat.texture_mime},
+                             {"texture_bytes", mat.texture.size()}});
+    j["materials"] = std::move(materials);
     j["per_piece"] = std::move(pieces);
     j["per_pair"] = std::move(pair_list);
     return j;
@@ -97,6 +104,16 @@ std::string model_summary_text(const nlohmann::ordered_json& j) {
         out += fmt::format("render        render surfaces on {} of {} pieces, {} triangles ({} on the tet surface)\n",
                            rs["pieces"].get<size_t>(), j["pieces"].get<size_t>(), rs["triangles"].get<size_t>(),
                            rs["fell_back"].get<size_t>());
+    if (j.contains("materials") && !j["materials"].empty()) {
+        std::string textures;
+        size_t textured = 0;
+        for (const auto& mat : j["materials"])
+            if (mat["texture_bytes"].get<size_t>() > 0)
+                textures += fmt::format("{}{} ({}, {:.0f} kB)", textured++ ? ", " : ": ", mat["texture"].get<std::string>(),
+                                        mat["texture_type"].get<std::string>(), mat["texture_bytes"].get<size_t>() / 1e3);
+        out += fmt::format("look          the input's: {} materials, {} textured{}\n", j["materials"].size(), textured,
+                           textures);
+    }
     out += "\npiece   tets   volume(m^3)    mass(kg)  parts  fracture-tris  connected\n";
     for (const auto& p : j["per_piece"])
         out += fmt::format("{:5} {:6} {:13.6g} {:11.6g} {:6} {:14} {:>10}\n", p["piece"].get<int>(),

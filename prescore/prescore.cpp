@@ -14,8 +14,10 @@
 #include "core/model_io.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
+#include "meshio/appearance.h"
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
+#include "prescore/appearance_transfer.h"
 #include "prescore/collision_parts.h"
 #include "prescore/constraint_reduction.h"
 #include "prescore/constraints.h"
@@ -219,6 +221,34 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                  report.render_triangles, report.render_fell_back);
 }
 
+// The input's materials, textures, texture coordinates and colours on the render surfaces
+// (prescore/appearance_transfer.h), when it has any beyond its shape. Never fatal: a file whose
+// appearance cannot be read is drawn in the material colour, with a warning.
+void add_appearance(Model& model, const std::string& path, double scale) {
+    Appearance look;
+    try {
+        look = load_appearance(path);
+    } catch (const Error& e) {
+        spdlog::warn("appearance: not read, the pieces are drawn in one colour ({})", e.what());
+        return;
+    }
+    for (const std::string& w : look.warnings) spdlog::warn("appearance: {}", w);
+    if (look.plain()) return;
+    for (Vec3& v : look.mesh.vertices) {
+        v *= scale;
+        if (!v.allFinite()) {  // load_mesh refuses such a file; a second reading must not differ
+            spdlog::warn("appearance: not used, a vertex is not finite; the pieces are drawn in one colour");
+            return;
+        }
+    }
+    transfer_appearance(model, look);
+    size_t textures = 0;
+    for (const Material& m : model.materials) textures += !m.texture.empty();
+    spdlog::info("appearance: {} materials ({} textured), {} texture coordinates, {} vertex colours, from {} triangles",
+                 model.materials.size(), textures, look.uv.empty() ? "no" : "with", look.colour.empty() ? "no" : "with",
+                 look.mesh.triangles.size());
+}
+
 }  // namespace
 
 Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out) {
@@ -283,6 +313,10 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     if (settings.render_surface) {
         add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, report);
         timer.lap("render surfaces");
+        if (report.render_surfaces > 0) {
+            add_appearance(model, mesh_settings.path, report.scale);
+            timer.lap("appearance");
+        }
     }
     report.surface = std::move(fit.surface);
     model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices);

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <chrono>
+#include <map>
 
 #include "render/gl.h"
 #include "render/gl_context.h"
@@ -49,23 +50,12 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     const Trajectory& t = *scene.trajectory;
     assert(t.pieces == scene.model->pieces.size() && t.props == scene.scene.kinematic.size());
     if (settings.shadows) shadow_map_ = std::make_unique<ShadowMap>(settings.shadow_map);
-    for (uint32_t i = 0; i < t.pieces; ++i) {
-        Item item;
-        // A render surface is drawn indexed with its smooth normals, and casts its shadow with the
-        // piece's tet surface (a few thousand triangles instead of tens of thousands; the shadow
-        // map holds the caster's back faces, which lie behind the drawn surface's lit side but in
-        // pieces thinner than the two surfaces' gap; no acne seen in the demo); a tet surface as before.
-        const Piece& piece = scene.model->pieces[i];
-        if (piece.render) {
-            item.mesh = std::make_unique<GpuMesh>(piece_mesh(piece, i, settings));
-            if (settings.shadows) item.shadow_mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings));
-        } else {
-            item.mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings));
-        }
-        item.body = int(i);
-        item.specular = kPieceSpecular;
-        items_.push_back(std::move(item));
+    if (settings.colours == Colours::Input && !scene.model->materials.empty()) {
+        std::vector<DecodedImage> images;
+        looks_ = material_looks(*scene.model, &images);
+        for (const DecodedImage& image : images) textures_.push_back(std::make_unique<GpuTexture>(image));
     }
+    for (uint32_t i = 0; i < t.pieces; ++i) add_piece(i);
     for (uint32_t k = 0; k < t.props; ++k) {
         const KinematicSettings& body = scene.scene.kinematic[k];
         Item item;
@@ -80,7 +70,8 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     for (const Item& item : items_) {
         GlProgram& p = scene_programs_[size_t(variant(item))];
         if (p.id()) continue;
-        const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade);
+        const std::string fragment =
+            shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade, item.texture >= 0);
         p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
         // Lights, shadow frustum and fade are fixed for the whole render: set once (and the
         // camera, unless it moves).
@@ -89,6 +80,52 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         set_camera_uniforms(p, cameras_.front());
     }
     check_gl("scene setup");
+}
+
+void FrameRenderer::add_piece(uint32_t i) {
+    // A render surface is drawn indexed with its smooth normals, and casts its shadow with the
+    // piece's tet surface (a few thousand triangles instead of tens of thousands; the shadow
+    // map holds the caster's back faces, which lie behind the drawn surface's lit side but in
+    // pieces thinner than the two surfaces' gap; no acne seen in the demo); a tet surface as before.
+    const Piece& piece = scene_.model->pieces[i];
+    if (!piece.render) {
+        Item item;
+        item.mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings_));
+        item.body = int(i);
+        item.specular = kPieceSpecular;
+        items_.push_back(std::move(item));
+        return;
+    }
+    const IndexedVertices all = piece_mesh(piece, i, settings_, looks_);
+    // The triangles of each texture (-1 first: untextured), vertices renumbered in first use.
+    std::map<int32_t, IndexedVertices> parts;
+    if (all.texture.empty()) {
+        parts[-1] = all;
+    } else {
+        std::map<int32_t, std::vector<uint32_t>> index;
+        for (size_t t = 0; t < all.texture.size(); ++t) {
+            IndexedVertices& part = parts[all.texture[t]];
+            std::vector<uint32_t>& renumber = index[all.texture[t]];
+            if (renumber.empty()) renumber.assign(all.vertices.size(), UINT32_MAX);
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = all.indices[3 * t + size_t(k)];
+                if (renumber[v] == UINT32_MAX) renumber[v] = uint32_t(part.vertices.size()), part.vertices.push_back(all.vertices[v]);
+                part.indices.push_back(renumber[v]);
+            }
+        }
+    }
+    bool first = true;
+    for (const auto& [texture, part] : parts) {
+        Item item;
+        item.mesh = std::make_unique<GpuMesh>(part);
+        if (first && settings_.shadows) item.shadow_mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings_));
+        item.casts = first;  // the piece's whole tet surface, once
+        item.texture = texture;
+        item.body = int(i);
+        item.specular = kPieceSpecular;
+        items_.push_back(std::move(item));
+        first = false;
+    }
 }
 
 void FrameRenderer::add_static_items() {
@@ -205,6 +242,7 @@ void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     p.set("u_sky_colour", lights_.sky_colour);
     p.set("u_bounce_colour", lights_.bounce_colour);
     p.set("u_shadow_map", 0);
+    p.set("u_texture", 1);
     p.set("u_shadow_texel_uv", 1.0f / float(settings_.shadow_map));
     const float radius = float(bounds_.sizes().norm() / 2);
     p.set("u_fade_centre", Eigen::Vector3f(bounds_.center().cast<float>()));
@@ -238,6 +276,11 @@ void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fadin
         if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
         p.set("u_model", model_matrix(item, frame));
         p.set("u_specular", item.specular);
+        if (item.texture >= 0) {
+            glActiveTexture(GL_TEXTURE1);
+            glBindTexture(GL_TEXTURE_2D, textures_[size_t(item.texture)]->id());
+            glActiveTexture(GL_TEXTURE0);
+        }
         item.mesh->draw();
     }
     glBindTexture(GL_TEXTURE_2D, 0);

@@ -4,6 +4,10 @@
 // only on its own poses and its camera: no state carries from one frame to the next, so frame f
 // is the same bytes whichever range rendered it.
 //
+// A piece with the input's textures (colours = "input", render/texture.h) is drawn as one item
+// per texture its triangles sample (the textures uploaded once, sampled on unit 1), and casts
+// its shadow once.
+//
 // Per frame: shadow pass (depth from the key light, front faces culled, polygon offset) ->
 // scene pass (linear light, MSAA, encoded to sRGB8 by GL on write) -> resolve (glBlitFramebuffer:
 // samples decoded, averaged in linear light, encoded) -> glReadPixels of sRGB bytes. Needs a
@@ -32,6 +36,7 @@
 #include "render/render.h"
 #include "render/render_target.h"
 #include "render/shadow_map.h"
+#include "render/texture.h"
 
 namespace shatter {
 
@@ -64,6 +69,7 @@ private:
         bool casts = true;    // drawn into the shadow map
         bool receives = true; // looks the shadow map up (false where no shadow can fall)
         float specular = 0;
+        int texture = -1;     // the input texture it samples (textures_), -1: none
     };
     void add_static_items();
     Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
@@ -73,9 +79,11 @@ private:
     // Where this frame's edges are: the screen rectangle of every item that does not fade.
     PixelRect edge_rect(uint32_t frame) const;
     static int variant(const Item& item) {
-        return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4);
+        return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4) | (item.texture >= 0 ? 8 : 0);
     }
     void add_ground(const Vec3& origin, double extent);
+    // Piece `i`'s items: one per texture its triangles sample (untextured first).
+    void add_piece(uint32_t i);
     void set_scene_uniforms(const GlProgram& p) const;
     void set_camera_uniforms(const GlProgram& p, const Camera& c) const;
 
@@ -88,7 +96,9 @@ private:
     std::vector<Item> items_;
     RenderTarget target_;
     std::unique_ptr<ShadowMap> shadow_map_;
-    std::array<GlProgram, 8> scene_programs_;  // by variant(): highlight, fade, no shadow lookups (built for the items present)
+    std::vector<MaterialLook> looks_;                   // the model's materials (colours = "input"), else empty
+    std::vector<std::unique_ptr<GpuTexture>> textures_;  // their decoded textures
+    std::array<GlProgram, 16> scene_programs_;  // by variant(): highlight, fade, no shadow lookups, texture (built for the items present)
     GlProgram shadow_program_;
     FrameTimes times_;
 };

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
+#include <tuple>
 
 #include "core/palette.h"
 
@@ -27,6 +29,7 @@ void add_triangle(std::vector<Vertex>& out, const Vec3& a, const Vec3& b, const 
 }  // namespace
 
 Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s) {
+    if (kind == FaceKind::Fracture && s.interior_colour) return *s.interior_colour;
     Colour c = base;
     for (float& v : c) {
         if (kind == FaceKind::Fracture) v += (1.0f - v) * static_cast<float>(s.fracture_tint);
@@ -38,7 +41,14 @@ Colour face_colour(const Colour& base, FaceKind kind, const RenderSettings& s) {
 Colour piece_base_colour(uint32_t id, const RenderSettings& s) {
     for (const auto& [piece, colour] : s.piece_colours)
         if (piece == id) return colour;
-    return s.colour_mode == ColourMode::Pieces ? piece_colour(id) : s.material_colour;
+    return s.colours == Colours::Palette ? piece_colour(id) : s.material_colour;
+}
+
+bool uses_materials(const Piece& piece, uint32_t id, const RenderSettings& s, const std::vector<MaterialLook>& looks) {
+    if (s.colours != Colours::Input || !piece.render || piece.render->material.empty() || looks.empty()) return false;
+    for (const auto& [p, colour] : s.piece_colours)
+        if (p == id) return false;
+    return true;
 }
 
 std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const RenderSettings& s) {
@@ -57,7 +67,49 @@ std::vector<Vertex> piece_vertices(const Piece& piece, uint32_t id, const Render
     return out;
 }
 
-IndexedVertices piece_mesh(const Piece& piece, uint32_t id, const RenderSettings& s) {
+namespace {
+
+// A render surface in its materials' colours (piece_mesh with materials).
+IndexedVertices material_mesh(const Piece& piece, const RenderSettings& s, const std::vector<MaterialLook>& looks) {
+    const RenderSurface& rs = *piece.render;
+    const Vec3& c = piece.mass.center;
+    IndexedVertices out;
+    std::map<std::tuple<uint32_t, int, uint32_t>, uint32_t> copy;  // (vertex, kind, material) -> vertex
+    out.indices.reserve(3 * rs.triangles.size());
+    out.material = rs.material;
+    bool any_texture = false;
+    for (size_t t = 0; t < rs.triangles.size(); ++t) {
+        const int kind = static_cast<int>(rs.kinds[t]) % 3;
+        const uint32_t m = rs.material[t] < looks.size() ? rs.material[t] : 0;
+        const MaterialLook& look = looks[m];
+        const bool textured = kind == 0 && look.texture >= 0 && !rs.uv.empty();
+        out.texture.push_back(textured ? look.texture : -1);
+        any_texture = any_texture || textured;
+        const Colour colour = kind == 0 ? look.base : face_colour(look.mean, rs.kinds[t], s);
+        for (uint32_t v : rs.triangles[t]) {
+            auto [it, fresh] = copy.emplace(std::make_tuple(v, kind, m), uint32_t(out.vertices.size()));
+            if (fresh) {
+                Vertex x{};
+                const Vec3 p = rs.vertices[v] - c;
+                for (int i = 0; i < 3; ++i) {
+                    x.position[i] = static_cast<float>(p[i]);
+                    x.normal[i] = static_cast<float>(rs.normals[v][i]);
+                    x.colour[i] = colour[size_t(i)] * (kind == 0 && !rs.colour.empty() ? rs.colour[v][size_t(i)] : 1.0f);
+                }
+                if (textured) x.uv[0] = rs.uv[v][0], x.uv[1] = 1.0f - rs.uv[v][1];
+                out.vertices.push_back(x);
+            }
+            out.indices.push_back(it->second);
+        }
+    }
+    if (!any_texture) out.texture.clear();
+    return out;
+}
+
+}  // namespace
+
+IndexedVertices piece_mesh(const Piece& piece, uint32_t id, const RenderSettings& s, const std::vector<MaterialLook>& looks) {
+    if (uses_materials(piece, id, s, looks)) return material_mesh(piece, s, looks);
     IndexedVertices out;
     if (!piece.render) {
         out.vertices = piece_vertices(piece, id, s);

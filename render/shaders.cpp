@@ -6,6 +6,7 @@ const char* const kSceneVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_colour;
+layout(location = 3) in vec2 a_uv;
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
 uniform mat4 u_shadow_view_projection;
@@ -14,7 +15,9 @@ out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_colour;
 out vec3 v_shadow;
+out vec2 v_uv;
 void main() {
+    v_uv = a_uv;
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world = world.xyz;
     v_normal = mat3(u_model) * a_normal;
@@ -31,6 +34,7 @@ in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_colour;
 in vec3 v_shadow;
+in vec2 v_uv;
 uniform vec3 u_camera;
 uniform vec3 u_key_direction;
 uniform vec3 u_key_colour;
@@ -45,6 +49,9 @@ uniform float u_fade_start;
 uniform float u_fade_end;
 uniform vec3 u_background;
 uniform float u_specular;
+#if TEXTURE
+uniform sampler2D u_texture;  // sRGB: sampled in linear light
+#endif
 out vec4 o_colour;
 
 #if SHADOWS
@@ -71,7 +78,11 @@ void main() {
 #endif
     float fill = max(dot(n, u_fill_direction), 0.0);
     vec3 ambient = mix(u_bounce_colour, u_sky_colour, 0.5 + 0.5 * n.y);
-    vec3 colour = v_colour * (u_key_colour * key + u_fill_colour * fill + ambient);
+    vec3 albedo = v_colour;
+#if TEXTURE  // the input's texture on outer faces
+    albedo *= texture(u_texture, v_uv).rgb;
+#endif
+    vec3 colour = albedo * (u_key_colour * key + u_fill_colour * fill + ambient);
 #if SPECULAR  // the ground has none: no pow()
     vec3 h = normalize(u_key_direction + normalize(u_camera - v_world));
     colour += u_key_colour * (u_specular * key * pow(max(dot(n, h), 0.0), 40.0));
@@ -84,11 +95,11 @@ void main() {
 }
 )";
 
-std::string scene_fragment(bool shadows, bool specular, bool fade) {
+std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture) {
     std::string s = kSceneFragment;
     const size_t line = s.find('\n') + 1;  // after #version
     s.insert(line, std::string("#define SHADOWS ") + (shadows ? "1" : "0") + "\n#define SPECULAR " + (specular ? "1" : "0") +
-                       "\n#define FADE " + (fade ? "1" : "0") + "\n");
+                       "\n#define FADE " + (fade ? "1" : "0") + "\n#define TEXTURE " + (texture ? "1" : "0") + "\n");
     return s;
 }
 

@@ -13,8 +13,9 @@ extern const char* const kSceneVertex;
 extern const char* const kSceneFragment;
 // The scene fragment shader specialized (#define) for one kind of item: llvmpipe runs both sides
 // of every branch under a mask, so a uniform `if` saves nothing; a variant without the shadow
-// lookups, the highlight or the fade does.
-std::string scene_fragment(bool shadows, bool specular, bool fade);
+// lookups, the highlight or the fade does. `texture`: the colour is multiplied by u_texture
+// (unit 1) at the vertices' texture coordinates.
+std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture = false);
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
 

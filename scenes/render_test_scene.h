@@ -92,11 +92,13 @@ struct TestScene {
     }
 };
 
-// Small renders for tests: 320x180, everything else as the defaults.
+// Small renders for tests: 320x180, the pieces in the palette (the test scene has no materials:
+// the default, the input's colours, would draw them all alike), everything else as the defaults.
 inline RenderSettings small_render_settings() {
     RenderSettings s;
     s.width = 320;
     s.height = 180;
+    s.colours = Colours::Palette;
     return s;
 }
 

@@ -14,6 +14,8 @@ PACKAGES=(
   libbullet-dev libeigen3-dev
   # render
   libosmesa6-dev libpng-dev zlib1g-dev
+  # textures: PNG, JPEG and TGA decoding (stb_image)
+  libstb-dev
   # core: logging, CLI, shot files, JSON
   libspdlog-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   # tests

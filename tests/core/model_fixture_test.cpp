@@ -2,6 +2,7 @@
 // with (tests/fixtures/README.md).
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "core/model_io.h"
 
 namespace shatter {
@@ -60,6 +61,58 @@ TEST(ModelFixture, Version2FixtureReadsWithItsRenderSurfaces) {
             }
         }
     }
+}
+
+// Version 3: the textured glTF box (assimp-testmodels' BoxTextured.glb) at 10 cm in 2 pieces,
+// each render surface with texture coordinates and materials, the model with the file's two
+// materials (assimp's default and the textured one, its embedded 2,433-byte PNG).
+TEST(ModelFixture, Version3FixtureReadsWithItsMaterialsAndTextureCoordinates) {
+    Model m = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v3.model");
+    ASSERT_EQ(m.pieces.size(), 2u);
+    EXPECT_EQ(m.mesh.tets.size(), 56u);
+    ASSERT_EQ(m.materials.size(), 2u);
+    const uint32_t t = m.materials[0].texture.empty() ? 1 : 0;  // the textured one
+    const Material& textured = m.materials[t];
+    EXPECT_EQ(textured.texture_mime, "image/png");
+    ASSERT_EQ(textured.texture.size(), 2433u);
+    EXPECT_EQ(textured.texture.compare(1, 3, "PNG"), 0);
+    EXPECT_TRUE(m.materials[1 - t].texture.empty());
+    for (const Piece& p : m.pieces) {
+        ASSERT_TRUE(p.render);
+        const RenderSurface& rs = *p.render;
+        EXPECT_EQ(rs.uv.size(), rs.vertices.size());
+        EXPECT_TRUE(rs.colour.empty());
+        ASSERT_EQ(rs.material.size(), rs.triangles.size());
+        for (uint32_t i : rs.material) EXPECT_EQ(i, t);
+    }
+}
+
+// The version 3 fields come back as written, and the bytes are the same when written again.
+TEST(ModelFixture, AppearanceRoundTripsAndABadMaterialIndexIsRefused) {
+    Model m = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v2.model");
+    m.materials = {Material{"plain", {0.25f, 0.5f, 0.75f, 1}, "", "", ""},
+                   Material{"tex", {1, 1, 1, 0.5f}, std::string("\x89PNG\0bytes", 10), "image/png", "a.png"}};
+    RenderSurface& rs = *m.pieces[0].render;
+    for (size_t v = 0; v < rs.vertices.size(); ++v) {
+        rs.uv.push_back({float(v) * 0.5f, -float(v)});
+        rs.colour.push_back({0.1f, 0.2f, 0.3f, float(v % 2)});
+    }
+    for (size_t t = 0; t < rs.triangles.size(); ++t) rs.material.push_back(uint32_t(t % 2));
+    const std::string bytes = encode_model(m);
+    const Model back = decode_model(bytes, "m.model");
+    ASSERT_EQ(back.materials.size(), 2u);
+    EXPECT_EQ(back.materials[1].texture, m.materials[1].texture);
+    EXPECT_EQ(back.materials[1].texture_mime, "image/png");
+    EXPECT_EQ(back.materials[1].texture_name, "a.png");
+    EXPECT_EQ(back.materials[0].base_colour, m.materials[0].base_colour);
+    EXPECT_EQ(back.pieces[0].render->uv, rs.uv);
+    EXPECT_EQ(back.pieces[0].render->colour, rs.colour);
+    EXPECT_EQ(back.pieces[0].render->material, rs.material);
+    EXPECT_TRUE(back.pieces[1].render->uv.empty());  // piece 1 has none
+    EXPECT_EQ(encode_model(back), bytes);
+
+    rs.material[0] = 2;  // of 2 materials
+    EXPECT_THROW(decode_model(encode_model(m), "m.model"), Error);
 }
 
 }  // namespace

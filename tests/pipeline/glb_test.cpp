@@ -1,7 +1,8 @@
 // The .glb export (pipeline/export_glb.h), checked by reading it back with assimp and by the
 // Khronos validator: one node per piece and kinematic body, one animation channel per node with
 // a key at every frame at time frame / fps, a known pose that comes back within 1e-5, vertices
-// about each piece's centre of mass in metres (+Y up, no conversion), the palette colours, the
+// about each piece's centre of mass in metres (+Y up, no conversion), render's colours, a
+// textured input's texture embedded with its texture coordinates, the
 // same bytes for the same input, and an atomic write that leaves no temporary behind.
 //
 // The validator test needs node and the npm package gltf-validator, which
@@ -16,8 +17,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -29,8 +33,10 @@
 #include "core/scene_settings.h"
 #include "pipeline/export_glb.h"
 #include "pipeline/process.h"
+#include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
+#include "render/texture.h"
 #include "scenes/box_model.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
@@ -217,7 +223,7 @@ TEST(GlbExport, RotationKeysStayOnOneHemisphereSoInterpolationTurnsTheShortWay) 
     }
 }
 
-TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithPaletteColours) {
+TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithRendersColours) {
     TempDir dir;
     const Model m = test_model();
     export_glb(m, test_trajectory(m), dir.file("a.glb"));
@@ -235,18 +241,19 @@ TEST(GlbExport, PieceVerticesAreAboutTheCentreOfMassInMetresWithPaletteColours) 
         EXPECT_NEAR(std::abs(mesh->mVertices[i].z), 0.2, 1e-6);
         EXPECT_NEAR(mesh->mNormals[i].Length(), 1.0, 1e-6);
     }
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(mesh)[i], piece_colour(2)[i], 1e-6);
+    // Without render settings, render's defaults: a model without materials in material_colour.
+    const RenderSettings look;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(mesh)[i], look.material_colour[size_t(i)], 1e-6);
 
     // Piece 0's fracture and cavity faces have render's shades of its colour.
     const aiNode* n0 = g.node("piece_0");
     ASSERT_EQ(n0->mNumMeshes, 3u);
-    const RenderSettings look;
     const FaceKind kinds[3] = {FaceKind::Outer, FaceKind::Fracture, FaceKind::Cavity};
     const unsigned faces[3] = {9, 2, 1};
     for (int k = 0; k < 3; ++k) {
         const aiMesh* part = g.scene->mMeshes[n0->mMeshes[k]];
         EXPECT_EQ(part->mNumFaces, faces[k]) << k;
-        const Colour want = face_colour(piece_colour(0), kinds[k], look);
+        const Colour want = face_colour(look.material_colour, kinds[k], look);
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(part)[i], want[i], 1e-6) << k;
     }
     // The sphere prop has its radius and its scene colour.
@@ -476,8 +483,9 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
     ASSERT_TRUE(last);
     EXPECT_EQ(last->mNumPositionKeys, kFewFrames);
     EXPECT_NEAR(last->mPositionKeys[kFewFrames - 1].mValue.y, m.pieces[999].mass.center.y() - 0.1, 1e-5);
+    const RenderSettings look;  // render's defaults: a model without materials in material_colour
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(g.scene->mMeshes[g.node("piece_999")->mMeshes[0]])[i],
-                                            piece_colour(999)[i], 1e-6);
+                                            look.material_colour[size_t(i)], 1e-6);
 }
 
 // A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each
@@ -516,6 +524,150 @@ TEST(GlbExport, RenderSurfacesExportIndexedWithTheirNormals) {
     if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
     std::string out;
     EXPECT_EQ(validator_errors(*node, *modules, dir.file("r.glb"), &out), 0) << out;
+}
+
+}  // namespace
+}  // namespace shatter
+
+namespace shatter {
+namespace {
+
+// The GLB's JSON chunk and its binary chunk.
+std::pair<nlohmann::json, std::string> glb_chunks(const std::string& bytes) {
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    const uint32_t json_length = u32(12);
+    const size_t bin = 20 + json_length;
+    return {nlohmann::json::parse(bytes.substr(20, json_length)), bytes.substr(bin + 8, u32(bin))};
+}
+
+// A textured input keeps its texture in the .glb: assimp-testmodels' duck (its TGA texture
+// beside the Collada file) in 6 pieces exports one image, stored in the binary chunk as PNG
+// (glTF allows PNG and JPEG only) that decodes to the texture's 512 x 512, a texture naming it,
+// an outer material whose baseColorTexture resolves to it, outer primitives with TEXCOORD_0
+// using that material, fracture primitives without; and the Khronos validator finds no error.
+TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
+    const std::string duck = "/usr/share/assimp/models/Collada/duck.dae";
+    if (!fs::exists(duck)) GTEST_SKIP() << duck << " is missing (fix: scripts/install-deps.sh)";
+    MeshSettings mesh;
+    mesh.path = duck;
+    mesh.size = 0.2;
+    PrescoreSettings settings;
+    settings.pieces = 6;
+    settings.resolution = 12;
+    const Model m = prescore(mesh, settings, nullptr);
+    TempDir dir;
+    export_glb(m, test_trajectory(m, 3, false), dir.file("duck.glb"));
+    std::ifstream in(dir.file("duck.glb"), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto [j, bin] = glb_chunks(bytes);
+    ASSERT_EQ(j["images"].size(), 1u);
+    const auto& image = j["images"][0];
+    EXPECT_EQ(image["mimeType"], "image/png");
+    const auto& view = j["bufferViews"][image["bufferView"].get<size_t>()];
+    const std::string png = bin.substr(view.value("byteOffset", size_t(0)), view["byteLength"].get<size_t>());
+    std::string why;
+    const auto decoded = decode_image(png, &why);
+    ASSERT_TRUE(decoded) << why;
+    EXPECT_EQ(decoded->width, 512u);
+    EXPECT_EQ(decoded->height, 512u);
+    ASSERT_EQ(j["textures"].size(), 1u);
+    EXPECT_EQ(j["textures"][0]["source"], 0);
+    std::set<size_t> textured_materials;
+    for (size_t i = 0; i < j["materials"].size(); ++i) {
+        const auto& pbr = j["materials"][i]["pbrMetallicRoughness"];
+        if (pbr.contains("baseColorTexture")) {
+            EXPECT_EQ(pbr["baseColorTexture"]["index"], 0);
+            textured_materials.insert(i);
+        }
+    }
+    ASSERT_EQ(textured_materials.size(), 1u);
+    size_t with_uv = 0, without_uv = 0;
+    for (const auto& mesh_json : j["meshes"])
+        for (const auto& p : mesh_json["primitives"]) {
+            const bool uv = p["attributes"].contains("TEXCOORD_0");
+            EXPECT_EQ(uv, textured_materials.count(p["material"].get<size_t>()) == 1);
+            (uv ? with_uv : without_uv) += 1;
+        }
+    EXPECT_EQ(with_uv, m.pieces.size());  // every piece shows some of the duck's outside
+    EXPECT_GT(without_uv, 0u);            // and its fracture faces
+    ::testing::Test::RecordProperty("glb_bytes", std::to_string(bytes.size()));
+
+    const auto node = find_program("node");
+    const auto modules = validator_modules();
+    if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
+    std::string out;
+    ASSERT_EQ(validator_errors(*node, *modules, dir.file("duck.glb"), &out), 0) << out;
+    std::cout << "gltf-validator (duck): " << out.substr(0, out.find('\n')) << "\n";
+}
+
+}  // namespace
+}  // namespace shatter
+
+namespace shatter {
+namespace {
+
+// A 10 cm cube as an ASCII PLY whose bottom corners are red and top corners blue.
+std::string coloured_cube_ply() {
+    std::string s = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\n"
+                    "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 8; ++i)
+        s += fmt::format("{} {} {} {}\n", i & 1 ? 0.1 : 0.0, i & 2 ? 0.1 : 0.0, i & 4 ? 0.1 : 0.0,
+                         i & 2 ? "0 0 255" : "255 0 0");
+    // Outward triangles of the six faces (corner i at x = bit 0, y = bit 1, z = bit 2).
+    for (const char* f : {"0 2 3", "0 3 1", "4 5 7", "4 7 6", "0 1 5", "0 5 4", "2 6 7", "2 7 3", "0 4 6", "0 6 2",
+                          "1 3 7", "1 7 5"})
+        s += fmt::format("3 {}\n", f);
+    return s;
+}
+
+// Vertex colours reach the .glb: every outer primitive of a cube whose PLY has vertex colours
+// carries COLOR_0 (red at the bottom, blue at the top, so some of each), its material white;
+// fracture primitives none; the validator finds no error.
+TEST(GlbExport, AnInputsVertexColoursBecomeColor0) {
+    TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write("cube.ply", coloured_cube_ply());
+    PrescoreSettings settings;
+    settings.pieces = 2;
+    settings.resolution = 4;
+    const Model m = prescore(mesh, settings, nullptr);
+    ASSERT_FALSE(m.materials.empty());
+    for (const Piece& p : m.pieces) ASSERT_EQ(p.render->colour.size(), p.render->vertices.size());
+    export_glb(m, test_trajectory(m, 3, false), dir.file("cube.glb"));
+    Imported g(dir.file("cube.glb"));
+    ASSERT_TRUE(g.scene);
+    size_t coloured = 0, plain = 0;
+    double reddest = 0, bluest = 0;
+    for (unsigned i = 0; i < g.scene->mNumMeshes; ++i) {
+        const aiMesh* mesh_i = g.scene->mMeshes[i];
+        if (!mesh_i->HasVertexColors(0)) {
+            ++plain;
+            continue;
+        }
+        ++coloured;
+        const Colour base = g.base_colour(mesh_i);
+        for (float c : base) EXPECT_NEAR(c, 1.0, 1e-6);
+        for (unsigned v = 0; v < mesh_i->mNumVertices; ++v) {
+            const aiColor4D& c = mesh_i->mColors[0][v];
+            reddest = std::max(reddest, double(c.r - c.b));
+            bluest = std::max(bluest, double(c.b - c.r));
+        }
+    }
+    EXPECT_EQ(coloured, m.pieces.size());
+    EXPECT_GT(plain, 0u);  // the fracture faces
+    EXPECT_GT(reddest, 0.99);
+    EXPECT_GT(bluest, 0.99);
+
+    const auto node = find_program("node");
+    const auto modules = validator_modules();
+    if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
+    std::string out;
+    ASSERT_EQ(validator_errors(*node, *modules, dir.file("cube.glb"), &out), 0) << out;
 }
 
 }  // namespace

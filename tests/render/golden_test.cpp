@@ -1,6 +1,7 @@
 // Golden images: three frames of the small test scene (scenes/render_test_scene.h) at
 // 320x180 through the whole pipeline (render_frames, PNG writer), compared with the committed
-// goldens in tests/golden/render/ by the project's own diff at a stated tolerance:
+// goldens in tests/golden/render/ (and the same scene with the textured v3 fixture in
+// tests/golden/textured/) by the project's own diff at a stated tolerance:
 //   RMSE <= 1.5 levels, SSIM >= 0.98, at most 0.5% of pixels off by more than 24 levels.
 // The tolerance absorbs rasterizer differences between Mesa versions (a few edge pixels); on
 // one machine the renders are byte-identical. Deliberate changes of the look (a moved key light,
@@ -29,9 +30,17 @@ const uint32_t kGoldenFrames[] = {0, 12, 23};
 
 std::string golden_dir() { return std::string(SHATTER_SOURCE_DIR) + "/tests/golden/render"; }
 
-// Renders the golden frames with `settings` into `dir`.
-void render_golden_frames(const RenderSettings& settings, const std::string& dir) {
+// The textured goldens: the same scene with the v3 fixture (a textured box in 2 pieces), in the
+// input's colours (its texture).
+std::string textured_golden_dir() { return std::string(SHATTER_SOURCE_DIR) + "/tests/golden/textured"; }
+
+// Renders the golden frames with `settings` into `dir` (of the v3 fixture when `textured`).
+void render_golden_frames(const RenderSettings& settings, const std::string& dir, bool textured = false) {
     TestScene t;
+    if (textured) {
+        t.model = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v3.model");
+        t.trajectory = test_trajectory(t.model, t.settings);
+    }
     const RenderScene scene = t.scene();
     RenderOptions quiet;
     quiet.progress = false;
@@ -61,6 +70,32 @@ TEST(Golden, SmallSceneMatchesTheCommittedImages) {
     }
 }
 
+// A textured input's look is pinned as the palette's is: the v3 fixture's box with its texture
+// (colours = "input") against tests/golden/textured/, at the same tolerance; drawn without its
+// texture (colours = "material") it fails.
+TEST(Golden, TexturedSceneMatchesTheCommittedImages) {
+    TempDir dir;
+    RenderSettings s = small_render_settings();
+    s.colours = Colours::Input;
+    render_golden_frames(s, dir.path().string(), true);
+    if (std::getenv("SHATTER_UPDATE_GOLDEN")) {
+        fs::create_directories(textured_golden_dir());
+        for (const auto& e : fs::directory_iterator(textured_golden_dir())) fs::remove(e.path());
+        for (const auto& e : fs::directory_iterator(dir.path()))
+            fs::copy_file(e.path(), fs::path(textured_golden_dir()) / e.path().filename());
+        GTEST_SKIP() << "goldens re-made in " << textured_golden_dir() << "; look at them before committing";
+    }
+    const DiffSummary d = diff_paths(textured_golden_dir(), dir.path().string(), kGoldenTolerance, "");
+    ASSERT_EQ(d.images.size(), std::size(kGoldenFrames));
+    for (const ImageDiff& i : d.images)
+        EXPECT_TRUE(i.failures.empty()) << i.name << ": " << (i.failures.empty() ? "" : i.failures.front());
+    TempDir plain;
+    s.colours = Colours::Material;
+    render_golden_frames(s, plain.path().string(), true);
+    EXPECT_GT(diff_paths(textured_golden_dir(), plain.path().string(), kGoldenTolerance, "").failed, 0u)
+        << "the box without its texture passed the textured golden comparison";
+}
+
 struct Change {
     const char* what;
     void (*apply)(RenderSettings&);
@@ -70,7 +105,7 @@ TEST(Golden, DeliberateChangesOfTheLookFail) {
     const Change changes[] = {
         {"key light moved 25 degrees", [](RenderSettings& s) { s.key_azimuth += 25; }},
         {"key light 15 degrees lower", [](RenderSettings& s) { s.key_elevation -= 15; }},
-        {"pieces in one wrong colour", [](RenderSettings& s) { s.colour_mode = ColourMode::Material; }},
+        {"pieces in one wrong colour", [](RenderSettings& s) { s.colours = Colours::Material; }},
         {"fracture faces untinted", [](RenderSettings& s) { s.fracture_tint = 0; }},
         {"no shadows", [](RenderSettings& s) { s.shadows = false; }},
         {"camera moved", [](RenderSettings& s) { s.camera_position = Vec3(0.5, 0.3, 0.6); }},

@@ -27,7 +27,8 @@ shadow_map = 1024
 msaa = 2
 key_azimuth = 20
 key_elevation = 60
-colour_mode = "material"
+colours = "material"
+interior_colour = "#00ff00"
 material_colour = "#ff0000"
 fracture_tint = 0.3
 cavity_shade = 0.2
@@ -44,7 +45,9 @@ background = "#000000"
     EXPECT_EQ(r.msaa, 2u);
     EXPECT_EQ(r.key_azimuth, 20);
     EXPECT_EQ(r.key_elevation, 60);
-    EXPECT_EQ(r.colour_mode, ColourMode::Material);
+    EXPECT_EQ(r.colours, Colours::Material);
+    ASSERT_TRUE(r.interior_colour);
+    EXPECT_FLOAT_EQ((*r.interior_colour)[1], 1.0f);
     EXPECT_FLOAT_EQ(r.material_colour[0], 1.0f);
     EXPECT_FLOAT_EQ(r.material_colour[1], 0.0f);
     EXPECT_EQ(r.fracture_tint, 0.3);
@@ -58,7 +61,7 @@ TEST(RenderSection, RefusesBadValuesNamingTheLine) {
     const std::pair<const char*, const char*> cases[] = {
         {"width = 0", "width"},           {"height = 20000", "height"},
         {"msaa = 3", "msaa"},             {"fov = 0", "fov"},
-        {"colour_mode = \"rainbow\"", "colour_mode"}, {"background = \"red\"", "background"},
+        {"colours = \"rainbow\"", "colours"}, {"interior_colour = \"white\"", "interior_colour"}, {"background = \"red\"", "background"},
         {"camera_target = [0, 0, 0]", "camera_position"}, {"fracture_tint = 2", "fracture_tint"},
         {"shadows = 1", "shadows"},       {"widht = 100", "width"},  // "did you mean"
     };
@@ -84,6 +87,7 @@ TEST(RenderColours, HexIsSrgbAndRoundTrips) {
 
 TEST(RenderColours, FractureFacesAreLighterAndCavityFacesDarker) {
     RenderSettings s;
+    s.colours = Colours::Palette;
     const Colour base = piece_base_colour(3, s);
     EXPECT_EQ(base, piece_colour(3));
     const Colour f = face_colour(base, FaceKind::Fracture, s), c = face_colour(base, FaceKind::Cavity, s);
@@ -91,8 +95,10 @@ TEST(RenderColours, FractureFacesAreLighterAndCavityFacesDarker) {
         EXPECT_NEAR(f[size_t(i)], base[size_t(i)] + (1 - base[size_t(i)]) * 0.55f, 1e-6);
         EXPECT_NEAR(c[size_t(i)], base[size_t(i)] * 0.45f, 1e-6);
     }
-    s.colour_mode = ColourMode::Material;
+    s.colours = Colours::Material;
     EXPECT_EQ(piece_base_colour(3, s), s.material_colour);
+    s.interior_colour = Colour{0.1f, 0.2f, 0.3f};
+    EXPECT_EQ(face_colour(base, FaceKind::Fracture, s), *s.interior_colour);
 }
 
 TEST(RenderCamera, AutomaticCameraKeepsEveryCornerOfTheBoundsInTheImage) {

@@ -1,0 +1,29 @@
+// Decoding the input's texture images (core/model.h Material::texture: the encoded file) with
+// stb_image (Debian's libstb: PNG, JPEG, TGA, BMP, ...). Used by render (textures in GL), the
+// .glb (TGA and BMP re-encoded as PNG) and OUT.pieces.ply (vertex colours from the texture).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shatter {
+
+struct DecodedImage {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // sRGB RGBA8, the file's top row first
+
+    // The texel at texture coordinates (u, v) in assimp's convention (v up), wrapping (glTF's
+    // default repeat), nearest texel.
+    const uint8_t* at(float u, float v) const;
+};
+
+// nullopt, with `why` set, when the bytes are not an image stb_image reads.
+std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why);
+
+// The mean colour of an image in linear light (alpha ignored).
+std::array<float, 3> mean_linear_colour(const DecodedImage& image);
+
+}  // namespace shatter

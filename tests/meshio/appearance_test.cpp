@@ -1,0 +1,87 @@
+// The input's appearance (meshio/appearance.h) on assimp-testmodels' textured files: the glTF
+// box's embedded PNG and its texture coordinates, the Collada duck's TGA beside it, a missing
+// texture as a warning, and positions that are load_mesh's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "meshio/appearance.h"
+#include "meshio/mesh_load.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+const std::string kModels = "/usr/share/assimp/models";
+const std::string kBox = kModels + "/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb";
+const std::string kDuck = kModels + "/Collada/duck.dae";
+
+bool have(const std::string& path) { return std::filesystem::exists(path); }
+
+// The box: 6 faces of 2 triangles, each face its own 4 vertices (24, the UV seams kept), one
+// material whose base colour texture is the embedded PNG (CesiumLogoFlat.png, 2,433 bytes in the
+// glTF version of the same file), every UV within [0, 6] (the texture repeats).
+TEST(Appearance, GltfBoxKeepsItsEmbeddedPngAndTextureCoordinates) {
+    if (!have(kBox)) GTEST_SKIP() << kBox << " is missing (fix: scripts/install-deps.sh installs assimp-testmodels)";
+    const Appearance a = load_appearance(kBox);
+    EXPECT_EQ(a.mesh.triangles.size(), 12u);
+    EXPECT_EQ(a.mesh.vertices.size(), 24u);
+    ASSERT_EQ(a.uv.size(), 24u);
+    EXPECT_TRUE(a.colour.empty());
+    ASSERT_EQ(a.material.size(), 12u);
+    const Material& m = a.materials.at(a.material[0]);
+    EXPECT_EQ(m.texture_mime, "image/png");
+    EXPECT_EQ(m.texture.size(), 2433u);
+    EXPECT_EQ(m.texture_name, "*0");
+    EXPECT_TRUE(a.warnings.empty());
+    EXPECT_FALSE(a.plain());
+    for (const auto& uv : a.uv) {
+        EXPECT_GE(std::min(uv[0], uv[1]), 0.0f);
+        EXPECT_LE(std::max(uv[0], uv[1]), 6.0f);
+    }
+    // The same positions as load_mesh's (which joins them): every vertex is one of its 8 corners.
+    const TriangleMesh joined = load_mesh_file(kBox).mesh;
+    EXPECT_EQ(joined.vertices.size(), 8u);
+    for (const Vec3& v : a.mesh.vertices)
+        EXPECT_NE(std::find(joined.vertices.begin(), joined.vertices.end(), v), joined.vertices.end());
+}
+
+// The duck: its material names ./duckCM.tga, found beside the file and kept as the file's bytes.
+TEST(Appearance, ColladaDuckFindsItsTgaBesideTheFile) {
+    if (!have(kDuck)) GTEST_SKIP() << kDuck << " is missing";
+    const Appearance a = load_appearance(kDuck);
+    EXPECT_EQ(a.mesh.triangles.size(), 4212u);
+    EXPECT_EQ(a.uv.size(), a.mesh.vertices.size());
+    std::set<uint32_t> used(a.material.begin(), a.material.end());
+    ASSERT_EQ(used.size(), 1u);
+    const Material& m = a.materials.at(*used.begin());
+    EXPECT_EQ(m.texture_mime, "image/x-tga");
+    EXPECT_EQ(m.texture.size(), std::filesystem::file_size(kModels + "/Collada/duckCM.tga"));
+    EXPECT_EQ(m.texture_name, "duckCM.tga");
+    EXPECT_TRUE(a.warnings.empty());
+}
+
+// The duck copied without its texture: a warning naming the texture, the material untextured.
+TEST(Appearance, AMissingTextureIsAWarningNotAnError) {
+    if (!have(kDuck)) GTEST_SKIP() << kDuck << " is missing";
+    testing_support::TempDir dir;
+    std::filesystem::copy_file(kDuck, dir.file("duck.dae"));
+    const Appearance a = load_appearance(dir.file("duck.dae"));
+    ASSERT_EQ(a.warnings.size(), 1u);
+    EXPECT_NE(a.warnings[0].find("duckCM.tga"), std::string::npos) << a.warnings[0];
+    for (const Material& m : a.materials) EXPECT_TRUE(m.texture.empty());
+    EXPECT_EQ(a.mesh.triangles.size(), 4212u);
+}
+
+TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
+    EXPECT_EQ(image_mime("\x89PNG\r\n\x1a\nrest", "x.tga"), "image/png");
+    EXPECT_EQ(image_mime("\xff\xd8\xff\xe0", "x"), "image/jpeg");
+    EXPECT_EQ(image_mime("whatever", "a/b/C.TGA"), "image/x-tga");
+    EXPECT_EQ(image_mime("whatever", "c.xyz"), "");
+}
+
+}  // namespace
+}  // namespace shatter
