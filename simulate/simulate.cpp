@@ -246,11 +246,12 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
     return n;
 }
 
-double rest_speed(const Model& model) {
+double rest_speed(const Model& model, double gravity) {
     Eigen::AlignedBox3d box;
     for (const Piece& p : model.pieces)
         for (const Vec3& v : p.surface.vertices) box.extend(v);
-    return box.isEmpty() ? kRestSpeed : std::max(kRestSpeed, kRestSpeedPerSize * box.diagonal().norm());
+    if (box.isEmpty()) return kRestSpeed;
+    return std::max(kRestSpeed, std::min(kRestSpeedPerSize * box.diagonal().norm(), kRestFall * gravity * kRestHold));
 }
 
 uint32_t frame_count(const SimulateSettings& s) {
@@ -308,7 +309,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // frame's last step: a piece resting on others jitters at a few cm/s while it stays put.
     std::vector<double> radius(world.pieces(), 0.0);
     for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
-    const double rest = rest_speed(model);
+    const double rest = rest_speed(model, in.scene.gravity.norm());
     auto at_rest = [&](uint32_t f) {
         for (uint32_t i = 0; i < world.pieces(); ++i) {
             if (!world.piece_dynamic(i)) continue;

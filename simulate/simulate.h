@@ -153,10 +153,14 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
 // been at rest for kRestHold, checked at frame boundaries (deterministic), or at max_duration.
 // The rest speed is kRestSpeed, or kRestSpeedPerSize times the object's size (the diagonal of its
 // bounding box) when that is more: a 5 m object creeping at 5 cm/s moves less than half a pixel
-// a frame in a movie that frames it, and is still to the eye.
+// a frame in a movie that frames it, and is still to the eye. But never more than a quarter of
+// the speed gravity gives in the hold (kRestFall x |g| x kRestHold, 1.23 m/s on Earth): a 100 m
+// object dropped from rest falls slower than 0.04 sizes per second for its whole first hold, and
+// would end its movie before it lands.
 inline constexpr double kRestSpeed = 0.02;          // (unit: m/s)
 inline constexpr double kRestSpeedPerSize = 0.04;   // (unit: 1/s: object sizes per second)
 inline constexpr double kRestHold = 0.5;            // (unit: s)
-double rest_speed(const Model& model);              // (unit: m/s)
+inline constexpr double kRestFall = 0.25;           // (unit: 1)
+double rest_speed(const Model& model, double gravity);  // gravity: |g| (unit: m/s^2); returns m/s
 
 }  // namespace shatter

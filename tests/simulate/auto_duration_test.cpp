@@ -53,7 +53,7 @@ TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
     EXPECT_NEAR((t.frames() - 1) / t.fps, r.rest_time + kRestHold, 1e-9);
     // Over the hold, the recorded poses barely move: at most the rest speed (kRestSpeed for this
     // 0.28 m plate) at every point of every piece; the frame before the hold moved more.
-    ASSERT_EQ(rest_speed(m), kRestSpeed);
+    ASSERT_EQ(rest_speed(m, 9.81), kRestSpeed);
     for (uint32_t f = t.frames() - hold; f < t.frames(); ++f) EXPECT_LT(frame_speed(m, t, f), kRestSpeed) << f;
     EXPECT_GE(frame_speed(m, t, t.frames() - hold - 1), kRestSpeed);
     // The settings remember "auto" and the cap; the same inputs give the same bytes.
@@ -67,8 +67,25 @@ TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
 // has a diagonal of sqrt(4^2 + 1^2 + 4^2) = sqrt(33) = 5.745 m, so kRestSpeedPerSize x 5.745 m =
 // 0.2298 m/s; a 0.28 m plate keeps kRestSpeed (0.04 x 0.28 = 0.011 m/s is less).
 TEST(AutoDuration, TheRestSpeedGrowsWithTheObject) {
-    EXPECT_NEAR(rest_speed(box_grid(4, 1, 4, 1.0, Vec3::Zero(), 2400, 2)), 0.04 * std::sqrt(33.0), 1e-12);
-    EXPECT_EQ(rest_speed(plate()), kRestSpeed);
+    EXPECT_NEAR(rest_speed(box_grid(4, 1, 4, 1.0, Vec3::Zero(), 2400, 2), 9.81), 0.04 * std::sqrt(33.0), 1e-12);
+    EXPECT_EQ(rest_speed(plate(), 9.81), kRestSpeed);
+    // Up to a quarter of what gravity gives in the hold: 0.25 x 9.81 x 0.5 = 1.22625 m/s for a
+    // 100 m cube (0.04 x 173.2 m = 6.93 m/s uncapped); without gravity, kRestSpeed.
+    const Model cube = box_grid(1, 1, 1, 100.0, Vec3::Zero(), 2400, 2);
+    EXPECT_NEAR(rest_speed(cube, 9.81), 1.22625, 1e-12);
+    EXPECT_EQ(rest_speed(cube, 0.0), kRestSpeed);
+}
+
+// A 100 m cube dropped from 1.5 m lands after sqrt(2 x 1.5 / 9.81) = 0.553 s: its movie runs
+// past the landing (it used to end at 0.5 s, the fall taken for rest).
+TEST(AutoDuration, ALargeObjectFallingIsNotAtRest) {
+    SimulationInput in = dropped_plate();
+    in.object.pose.position = Vec3(0, 1.5, 0);
+    in.object.pose.rotation_deg = Vec3::Zero();
+    const SimulationResult r = simulate(box_grid(1, 1, 1, 100.0, Vec3(-50, 0, -50), 2400, 2), in, "test");
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    EXPECT_GT(r.rest_time, std::sqrt(2 * 1.5 / 9.81));
+    EXPECT_GT((r.trajectory.frames() - 1) / r.trajectory.fps, std::sqrt(2 * 1.5 / 9.81) + kRestHold);
 }
 
 TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
