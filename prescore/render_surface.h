@@ -40,7 +40,7 @@ namespace shatter {
 // cut past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
 inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
-inline constexpr size_t kRenderSurfaceTriangles = 10000;      // most surface triangles cut
+inline constexpr size_t kRenderSurfaceTriangles = 12000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified: none cut
 
