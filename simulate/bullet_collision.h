@@ -5,6 +5,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <unordered_set>
 #include <utility>
