@@ -5,38 +5,11 @@
 #include <map>
 #include <tuple>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "prescore/triangle_tree_cgal.h"
 
 namespace shatter {
 
 namespace {
-
-using SK = CGAL::Simple_cartesian<double>;
-using STriangle = SK::Triangle_3;
-using Iterator = std::vector<STriangle>::const_iterator;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<SK, CGAL::AABB_triangle_primitive<SK, Iterator>>>;
-
-SK::Point_3 spoint(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-// Barycentric weights (sum 1) of p's projection on the plane of triangle abc: negative outside
-// the triangle. A degenerate triangle gives its centre.
-Vec3 barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 n = (b - a).cross(c - a);
-    const double nn = n.squaredNorm();
-    if (!(nn > 0)) return Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3);
-    Vec3 w((c - b).cross(p - b).dot(n) / nn, (a - c).cross(p - c).dot(n) / nn, 0);
-    w.z() = 1 - w.x() - w.y();
-    return w;
-}
-
-// The weights clamped to the triangle (non-negative, sum 1).
-Vec3 clamped(Vec3 w) {
-    w = w.cwiseMax(0.0);
-    return w / std::max(w.sum(), 1e-300);
-}
 
 // How far outside its triangle a corner may lie and still take that triangle's attributes
 // extrapolated (a weight down to -kReach): a render triangle is cut from the surface prescore
@@ -46,7 +19,8 @@ Vec3 clamped(Vec3 w) {
 // triangle nearest to itself.
 constexpr double kReach = 1.0;
 
-void paint(RenderSurface& rs, const Appearance& look, const std::vector<STriangle>& triangles, const Tree& tree) {
+void paint(RenderSurface& rs, const Appearance& look, const std::vector<TreeTriangle>& triangles,
+           const TriangleTree& tree) {
     const bool has_uv = !look.uv.empty(), has_colour = !look.colour.empty();
     using Key = std::tuple<uint32_t, float, float, float, float, float, float>;
     std::map<Key, uint32_t> index;
@@ -58,7 +32,7 @@ void paint(RenderSurface& rs, const Appearance& look, const std::vector<STriangl
     for (size_t t = 0; t < rs.triangles.size(); ++t) {
         const Tri& tri = rs.triangles[t];
         const Vec3 centre = (rs.vertices[tri[0]] + rs.vertices[tri[1]] + rs.vertices[tri[2]]) / 3;
-        const size_t j = size_t(tree.closest_point_and_primitive(spoint(centre)).second - triangles.cbegin());
+        const size_t j = size_t(tree.closest_point_and_primitive(tree_point(centre)).second - triangles.cbegin());
         const Tri& src = look.mesh.triangles[j];
         out.material[t] = look.material[j];
         const bool outer = rs.kinds[t] == FaceKind::Outer;
@@ -71,7 +45,7 @@ void paint(RenderSurface& rs, const Appearance& look, const std::vector<STriangl
                 const Tri* from = &src;
                 Vec3 w = barycentric(rs.vertices[v], x[src[0]], x[src[1]], x[src[2]]);
                 if (w.minCoeff() < -kReach) {
-                    from = &look.mesh.triangles[size_t(tree.closest_point_and_primitive(spoint(rs.vertices[v])).second -
+                    from = &look.mesh.triangles[size_t(tree.closest_point_and_primitive(tree_point(rs.vertices[v])).second -
                                                        triangles.cbegin())];
                     w = clamped(barycentric(rs.vertices[v], x[(*from)[0]], x[(*from)[1]], x[(*from)[2]]));
                 }
@@ -105,12 +79,12 @@ void paint(RenderSurface& rs, const Appearance& look, const std::vector<STriangl
 void transfer_appearance(Model& model, const Appearance& look) {
     model.materials = look.materials;
     if (look.mesh.triangles.empty()) return;
-    std::vector<STriangle> triangles;
+    std::vector<TreeTriangle> triangles;
     triangles.reserve(look.mesh.triangles.size());
     for (const Tri& t : look.mesh.triangles)
-        triangles.emplace_back(spoint(look.mesh.vertices[t[0]]), spoint(look.mesh.vertices[t[1]]),
-                               spoint(look.mesh.vertices[t[2]]));
-    Tree tree(triangles.cbegin(), triangles.cend());
+        triangles.emplace_back(tree_point(look.mesh.vertices[t[0]]), tree_point(look.mesh.vertices[t[1]]),
+                               tree_point(look.mesh.vertices[t[2]]));
+    TriangleTree tree(triangles.cbegin(), triangles.cend());
     tree.accelerate_distance_queries();
     for (Piece& piece : model.pieces)
         if (piece.render) paint(*piece.render, look, triangles, tree);

@@ -12,9 +12,6 @@
 #include <string_view>
 #include <tuple>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -22,7 +19,6 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
@@ -30,6 +26,7 @@
 #include <spdlog/spdlog.h>
 
 #include "prescore/tet_topology.h"
+#include "prescore/triangle_tree_cgal.h"
 
 namespace shatter {
 
@@ -41,13 +38,7 @@ using Point = K::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 using Soup = std::vector<std::array<size_t, 3>>;
 
-using SK = CGAL::Simple_cartesian<double>;
-using STriangle = SK::Triangle_3;
-using Iterator = std::vector<STriangle>::const_iterator;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<SK, CGAL::AABB_triangle_primitive<SK, Iterator>>>;
-
 Vec3 vec(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}; }
-SK::Point_3 spoint(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 // A piece's tet boundary in mesh vertex indices, in piece_surface's order, with its kinds.
 struct Cell {
@@ -195,8 +186,8 @@ Mesh cell_mesh(const Cell& cell, const std::vector<Vec3>& pushed, double nudge, 
 struct Input {
     const TriangleMesh& mesh;
     std::vector<Vec3> corner_normal;
-    std::vector<STriangle> triangles;
-    Tree tree;
+    std::vector<TreeTriangle> triangles;
+    TriangleTree tree;
 };
 
 std::vector<Vec3> pushed_vertices(const Model& model, const std::vector<Vec3>& normal, double margin) {
@@ -205,15 +196,6 @@ std::vector<Vec3> pushed_vertices(const Model& model, const std::vector<Vec3>& n
     return out;
 }
 
-Vec3 barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 n = (b - a).cross(c - a);
-    const double nn = n.squaredNorm();
-    if (!(nn > 0)) return Vec3(1.0 / 3, 1.0 / 3, 1.0 / 3);
-    Vec3 w((c - b).cross(p - b).dot(n) / nn, (a - c).cross(p - c).dot(n) / nn, 0);
-    w.z() = 1 - w.x() - w.y();
-    w = w.cwiseMax(0.0);
-    return w / std::max(w.sum(), 1e-300);
-}
 
 // The cut result as a render surface (see the file comment for how faces are told apart).
 RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const std::vector<Vec3>& pushed,
@@ -239,7 +221,7 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
         }
         if (k != 3) continue;
         const Vec3 centre = (p[0] + p[1] + p[2]) / 3;
-        const auto hit = in.tree.closest_point_and_primitive(spoint(centre));
+        const auto hit = in.tree.closest_point_and_primitive(tree_point(centre));
         const Vec3 q(hit.first.x(), hit.first.y(), hit.first.z());
         Tri tri;
         if ((q - centre).norm() <= eps) {
@@ -247,7 +229,7 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
             const Tri& src = in.mesh.triangles[t];
             const auto& iv = in.mesh.vertices;
             for (int c = 0; c < 3; ++c) {
-                const Vec3 w = barycentric(p[c], iv[src[0]], iv[src[1]], iv[src[2]]);
+                const Vec3 w = clamped(barycentric(p[c], iv[src[0]], iv[src[1]], iv[src[2]]));
                 Vec3 n = w[0] * in.corner_normal[3 * t] + w[1] * in.corner_normal[3 * t + 1] +
                          w[2] * in.corner_normal[3 * t + 2];
                 n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 1, 0);
@@ -259,8 +241,8 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
             FaceKind kind = FaceKind::Fracture;
             for (size_t c = 0; c < cell.triangles.size(); ++c) {
                 const Tri& ct = cell.triangles[c];
-                const STriangle st(spoint(pushed[ct[0]]), spoint(pushed[ct[1]]), spoint(pushed[ct[2]]));
-                const double d = CGAL::squared_distance(st, spoint(centre));
+                const TreeTriangle st(tree_point(pushed[ct[0]]), tree_point(pushed[ct[1]]), tree_point(pushed[ct[2]]));
+                const double d = CGAL::squared_distance(st, tree_point(centre));
                 if (d < best) best = d, kind = cell.kinds[c];
             }
             Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
@@ -318,7 +300,7 @@ Cuttable cuttable(const TriangleMesh& input, double crease_degrees) {
     Input& in = *c.in;
     in.triangles.reserve(input.triangles.size());
     for (const Tri& t : input.triangles)
-        in.triangles.emplace_back(spoint(input.vertices[t[0]]), spoint(input.vertices[t[1]]), spoint(input.vertices[t[2]]));
+        in.triangles.emplace_back(tree_point(input.vertices[t[0]]), tree_point(input.vertices[t[1]]), tree_point(input.vertices[t[2]]));
     in.tree.rebuild(in.triangles.cbegin(), in.triangles.cend());
     in.tree.accelerate_distance_queries();
     std::vector<Point> points;
