@@ -163,6 +163,30 @@ Piece get_piece(ByteReader& r, uint32_t tet_count, uint32_t version) {
 
 }  // namespace
 
+void write_material(ByteWriter& w, const Material& m) {
+    w.str(m.name);
+    for (float x : m.base_colour) w.f32(x);
+    w.u64(m.texture.size());
+    w.bytes(m.texture);
+    w.str(m.texture_mime);
+    w.str(m.texture_name);
+}
+
+Material read_material(ByteReader& r) {
+    Material m;
+    m.name = r.str(4096);
+    for (float& x : m.base_colour) {
+        x = r.f32();
+        if (!std::isfinite(x)) r.fail("a material's base colour is not a finite number");
+    }
+    const uint64_t n = r.u64();
+    if (n > r.remaining()) r.fail("a material's texture claims " + std::to_string(n) + " bytes");
+    m.texture = std::string(r.bytes(size_t(n)));
+    m.texture_mime = r.str(256);
+    m.texture_name = r.str(4096);
+    return m;
+}
+
 std::string encode_model(const Model& m) {
     ByteWriter w;
     w.f64(m.density);
@@ -184,14 +208,7 @@ std::string encode_model(const Model& m) {
         w.f64(c.area);
     }
     w.u32(static_cast<uint32_t>(m.materials.size()));
-    for (const Material& mat : m.materials) {
-        w.str(mat.name);
-        for (float x : mat.base_colour) w.f32(x);
-        w.u64(mat.texture.size());
-        w.bytes(mat.texture);
-        w.str(mat.texture_mime);
-        w.str(mat.texture_name);
-    }
+    for (const Material& mat : m.materials) write_material(w, mat);
     StageHeader h{std::string(kModelMagic), kModelVersion, m.producer, m.settings_json};
     return pack_stage_file(h, w.data());
 }
@@ -229,18 +246,7 @@ Model decode_model(std::string_view bytes, const std::string& source) {
     }
     if (f.header.version >= 3) {
         m.materials.resize(r.count(29, "materials"));
-        for (Material& mat : m.materials) {
-            mat.name = r.str(4096);
-            for (float& x : mat.base_colour) {
-                x = r.f32();
-                if (!std::isfinite(x)) r.fail("a material's base colour is not a finite number");
-            }
-            const uint64_t n = r.u64();
-            if (n > r.remaining()) r.fail("a material's texture claims " + std::to_string(n) + " bytes");
-            mat.texture = std::string(r.bytes(size_t(n)));
-            mat.texture_mime = r.str(256);
-            mat.texture_name = r.str(4096);
-        }
+        for (Material& mat : m.materials) mat = read_material(r);
         const uint32_t nm = static_cast<uint32_t>(m.materials.size());
         for (size_t p = 0; p < m.pieces.size(); ++p)
             if (m.pieces[p].render)

@@ -19,6 +19,7 @@
 #include "core/binary_io.h"
 #include "core/error.h"
 #include "core/isolated.h"
+#include "core/model_io.h"
 #include "meshio/mesh_load.h"
 
 namespace shatter {
@@ -191,14 +192,7 @@ std::string serialize(const Appearance& a) {
     for (const auto& c : a.colour)
         for (float x : c) w.f32(x);
     w.u32(uint32_t(a.materials.size()));
-    for (const Material& m : a.materials) {
-        w.str(m.name);
-        for (float x : m.base_colour) w.f32(x);
-        w.u64(m.texture.size());
-        w.bytes(m.texture);
-        w.str(m.texture_mime);
-        w.str(m.texture_name);
-    }
+    for (const Material& m : a.materials) write_material(w, m);
     w.u32(uint32_t(a.warnings.size()));
     for (const std::string& s : a.warnings) w.str(s);
     return w.data();
@@ -226,13 +220,7 @@ Appearance deserialize(const std::string& bytes, const std::string& path) {
             for (float& x : c) x = r.f32();
     }
     a.materials.resize(r.u32());
-    for (Material& m : a.materials) {
-        m.name = r.str();
-        for (float& x : m.base_colour) x = r.f32();
-        m.texture = std::string(r.bytes(size_t(r.u64())));
-        m.texture_mime = r.str();
-        m.texture_name = r.str();
-    }
+    for (Material& m : a.materials) m = read_material(r);
     a.warnings.resize(r.u32());
     for (std::string& s : a.warnings) s = r.str();
     return a;
