@@ -217,13 +217,21 @@ void PieceSolver::factor_body_space() {
     d.body_rhs.resize(unknowns);
 }
 
-btScalar PieceSolver::solve_joints_directly() {
+btScalar PieceSolver::solve_joints_directly(bool push) {
     Direct& d = *direct_system_;
     const int n = m_tmpSolverNonContactConstraintPool.size();
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
         btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
         btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+        if (push) {  // the same rows with no right-hand side: joined pieces move together
+            const btScalar jv = c.m_contactNormal1.dot(a.m_pushVelocity) + c.m_relpos1CrossNormal.dot(a.m_turnVelocity) +
+                                c.m_contactNormal2.dot(b.m_pushVelocity) + c.m_relpos2CrossNormal.dot(b.m_turnVelocity);
+            d.residual[r] = c.m_jacDiagABInv != 0
+                                ? double(-btScalar(c.m_appliedPushImpulse) * c.m_cfm / c.m_jacDiagABInv - jv)
+                                : 0.0;
+            continue;
+        }
         const btScalar jv = c.m_contactNormal1.dot(a.internalGetDeltaLinearVelocity()) +
                             c.m_relpos1CrossNormal.dot(a.internalGetDeltaAngularVelocity()) +
                             c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) +
@@ -254,6 +262,19 @@ btScalar PieceSolver::solve_joints_directly() {
         d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
     }
     btScalar largest = 0, most = 0;
+    if (push) {
+        for (int r = 0; r < n; ++r) {
+            btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+            const btScalar delta = btScalar(d.correction[r]);
+            c.m_appliedPushImpulse = btScalar(c.m_appliedPushImpulse) + delta;
+            m_tmpSolverBodyPool[c.m_solverBodyIdA].internalApplyPushImpulse(
+                c.m_contactNormal1 * m_tmpSolverBodyPool[c.m_solverBodyIdA].internalGetInvMass(), c.m_angularComponentA, delta);
+            m_tmpSolverBodyPool[c.m_solverBodyIdB].internalApplyPushImpulse(
+                c.m_contactNormal2 * m_tmpSolverBodyPool[c.m_solverBodyIdB].internalGetInvMass(), c.m_angularComponentB, delta);
+            if (c.m_jacDiagABInv != 0) largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
+        }
+        return largest;
+    }
     for (int r = 0; r < n; ++r) {
         btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
         const btScalar delta = btScalar(d.correction[r]);
@@ -323,9 +344,12 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
     most_iterations_ = btMax(most_iterations_, own);
     direct_system_->ok = false;
     if (direct_ && m_tmpSolverNonContactConstraintPool.size() > 0) factor_joints();
-    if (!(tolerance_ > 0) || m_tmpSolverNonContactConstraintPool.size() == 0)
-        return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
+    if (!(tolerance_ > 0) || m_tmpSolverNonContactConstraintPool.size() == 0) {
+        const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
             bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+        if (direct_ && direct_system_->ok) solve_joints_directly();  // the joints last
+        return r;
+    }
     // Bullet's loop (split-impulse pass, then `own` iterations: Bullet's residual threshold is 0,
     // so it never stops early), then more until the joints converge.
     solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifolds, numManifolds, constraints, numConstraints,
@@ -347,8 +371,52 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
         solveSingleIteration(iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info,
                              debugDrawer);
     extra_ = false;
+    if (direct_ && direct_system_->ok) solve_joints_directly();  // the joints last
     most_iterations_ = btMax(most_iterations_, iteration);
     return 0;
+}
+
+// Bullet's split-impulse pass (the contacts' push rows, Bullet's row update, as many passes as the
+// step's iterations), with the joint rows solved on the push velocities after the contacts in
+// each pass: J push + C l_push = 0, the joints' own compliance, no right-hand side.
+void PieceSolver::solveGroupCacheFriendlySplitImpulseIterations(btCollisionObject** bodies, int numBodies,
+                                                                btPersistentManifold** manifolds, int numManifolds,
+                                                                btTypedConstraint** constraints, int numConstraints,
+                                                                const btContactSolverInfo& info,
+                                                                btIDebugDraw* debugDrawer) {
+    const int joints = m_tmpSolverNonContactConstraintPool.size();
+    if (!push_joints_ || !info.m_splitImpulse || joints == 0) {
+        btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
+            bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+        return;
+    }
+    bool pushing = false;  // nothing penetrates: no push to share
+    for (int j = 0; j < m_tmpSolverContactConstraintPool.size() && !pushing; ++j)
+        pushing = m_tmpSolverContactConstraintPool[j].m_rhsPenetration != 0;
+    if (!pushing) return;
+    for (int r = 0; r < joints; ++r) m_tmpSolverNonContactConstraintPool[r].m_appliedPushImpulse = 0;
+    const bool direct = direct_ && direct_system_->ok;
+    for (int iteration = 0; iteration < info.m_numIterations; ++iteration) {
+        for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j) {
+            const btSolverConstraint& c = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
+            resolveSplitPenetrationImpulse(m_tmpSolverBodyPool[c.m_solverBodyIdA], m_tmpSolverBodyPool[c.m_solverBodyIdB], c);
+        }
+        if (direct) {
+            solve_joints_directly(true);
+            continue;
+        }
+        for (int j = 0; j < joints; ++j) {
+            btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[m_orderNonContactConstraintPool[j]];
+            btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+            btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+            const btScalar jv = c.m_contactNormal1.dot(a.m_pushVelocity) + c.m_relpos1CrossNormal.dot(a.m_turnVelocity) +
+                                c.m_contactNormal2.dot(b.m_pushVelocity) + c.m_relpos2CrossNormal.dot(b.m_turnVelocity);
+            const btScalar delta = -btScalar(c.m_appliedPushImpulse) * c.m_cfm - jv * c.m_jacDiagABInv;
+            c.m_appliedPushImpulse = btScalar(c.m_appliedPushImpulse) + delta;
+            a.internalApplyPushImpulse(c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
+            b.internalApplyPushImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
+        }
+    }
 }
 
 btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,

@@ -35,13 +35,19 @@ namespace shatter {
 // rows' residuals r with the contacts' impulses held, factored once per step (a sparse LDL^T).
 // Its solution is the fixed point Gauss-Seidel would reach after infinitely many passes, so a
 // chain of a heavy and a light piece is as stiff as its springs say whatever their mass ratio;
-// the contacts are still iterated around it (block Gauss-Seidel). The spring law, the CFM and
-// the damping keep their meaning (docs/physics.md, "Direct joints").
+// the contacts are still iterated around it (block Gauss-Seidel), and the joints are solved once
+// more after the last iteration, so that their forces are exact for the contacts' final impulses.
+// The spring law, the CFM and the damping keep their meaning (docs/physics.md, "Direct joints").
 class PieceSolver : public btSequentialImpulseConstraintSolver {
 public:
     PieceSolver();
     ~PieceSolver() override;
     void direct_joints(bool on) { direct_ = on; }
+    // Joined pushes (push_joints(true), off by default): the split-impulse pass that moves
+    // penetrating pieces out by position also solves the joint rows on the push velocities (with
+    // the direct solve when direct joints are on), so that a push moves joined pieces together
+    // instead of stretching their joints.
+    void push_joints(bool on) { push_joints_ = on; }
     void converge(double tolerance, int max_iterations) {
         tolerance_ = tolerance;
         max_iterations_ = max_iterations;
@@ -61,6 +67,11 @@ protected:
                                   int numConstraints, const btContactSolverInfo& info,
                                   btIDebugDraw* debugDrawer) override;
     void convertJoints(btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& info) override;
+    void solveGroupCacheFriendlySplitImpulseIterations(btCollisionObject** bodies, int numBodies,
+                                                       btPersistentManifold** manifolds, int numManifolds,
+                                                       btTypedConstraint** constraints, int numConstraints,
+                                                       const btContactSolverInfo& info,
+                                                       btIDebugDraw* debugDrawer) override;
     btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                            const btContactSolverInfo& info) override;
 
@@ -68,10 +79,13 @@ private:
     btScalar solve_row(btSolverConstraint& row, bool upper_limit);
     void factor_joints();
     void factor_body_space();
-    btScalar solve_joints_directly();  // one direct solve of every joint row; the largest correction (residual)
+    // One direct solve of every joint row, on the velocities (or on the push velocities); the
+    // largest correction (residual).
+    btScalar solve_joints_directly(bool push = false);
     struct Direct;
     std::unique_ptr<Direct> direct_system_;
     bool direct_ = false;
+    bool push_joints_ = false;
     void write_back_joints(const btContactSolverInfo& info);
 
     double tolerance_ = 0;

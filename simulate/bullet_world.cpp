@@ -108,8 +108,14 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     m.world.setGravity(to_bullet(setup.scene.gravity));
     btContactSolverInfo& info = m.world.getSolverInfo();
     info.m_numIterations = int(setup.iterations);
-    m.solver.converge(setup.converge_tolerance, int(std::max(setup.max_iterations, setup.iterations)));
+    if (setup.direct_joints && !(setup.converge_tolerance > 0))
+        m.solver.converge(kDirectTolerance, int(kDirectIterationCap * setup.iterations));
+    else
+        m.solver.converge(setup.converge_tolerance, int(std::max(setup.max_iterations, setup.iterations)));
     m.solver.direct_joints(setup.direct_joints);
+    m.solver.push_joints(setup.direct_joints);
+    // A joined push turns the pieces as the joints ask (Bullet's default applies a tenth of the turn).
+    if (setup.direct_joints) info.m_splitImpulseTurnErp = 1;
     info.m_splitImpulse = 1;  // penetration is resolved without adding kinetic energy
     info.m_splitImpulsePenetrationThreshold = 0;
 

@@ -42,9 +42,18 @@ struct WorldSetup {
     // 0: off (exactly `iterations`).
     double converge_tolerance = 0;
     uint32_t max_iterations = 0;
-    // Direct joints (simulate/bullet_solver.h): every iteration solves all joint rows at once.
+    // Direct joints (simulate/bullet_solver.h): every iteration solves all joint rows at once;
+    // contacts' pushes move joined pieces together (PieceSolver::push_joints), and unless
+    // converge_tolerance says otherwise the step iterates until the joints' forces are within
+    // kDirectTolerance of their strength, at most kDirectIterationCap x iterations.
     bool direct_joints = false;
 };
+
+// Direct joints' convergence: 1% of the strength, a fifth of what the residual check allows
+// (simulate/simulate.h kResidualTolerance); twice the step's iterations at most (measured:
+// docs/physics.md section 5b).
+inline constexpr double kDirectTolerance = 0.01;
+inline constexpr double kDirectIterationCap = 2;
 
 class BulletWorld {
 public:
