@@ -50,10 +50,10 @@ struct WorldSetup {
 };
 
 // Direct joints' convergence: 1% of the strength, a fifth of what the residual check allows
-// (simulate/simulate.h kResidualTolerance); twice the step's iterations at most (measured:
+// (simulate/simulate.h kResidualTolerance); ten times the step's iterations at most (measured:
 // docs/physics.md section 5b).
 inline constexpr double kDirectTolerance = 0.01;
-inline constexpr double kDirectIterationCap = 2;
+inline constexpr double kDirectIterationCap = 10;
 
 class BulletWorld {
 public:

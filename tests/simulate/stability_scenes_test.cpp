@@ -30,14 +30,18 @@ TEST(StabilityScenes, HeavyBlockOnALightChainHangsWhereItsSpringsSay) {
     EXPECT_TRUE(v.stable());
 }
 
-// A stack of four 5 cm boxes on the ground, each 10^(1/3) x heavier than the one below (top /
-// bottom 10), stands still (top moved 0.11 mm after 1 s, no break)...
-TEST(StabilityScenes, StackWithMassRatioTenStandsStill) {
-    const Verdict v = default_direct(stack_case(10));
-    EXPECT_EQ(v.cls, Stability::Stable);
-    EXPECT_EQ(v.breaks, 0u);
-    EXPECT_LT(v.measure, 1e-3);
-    EXPECT_TRUE(v.stable());
+// A stack of four 5 cm boxes on the ground, each heavier than the one below by the same factor
+// (top / bottom 10 or 100), stands still: no break, the top moved under 1 mm after 1 s (measured
+// 0.05 and 0.50 mm). The ground contact is iterated around the direct joints until the joints
+// converge; with twice the step's iterations at most the stack of 100 : 1 cascaded.
+TEST(StabilityScenes, StacksWithMassRatiosTenAndAHundredStandStill) {
+    for (double ratio : {10.0, 100.0}) {
+        const Verdict v = default_direct(stack_case(ratio));
+        EXPECT_EQ(v.cls, Stability::Stable) << "ratio " << ratio;
+        EXPECT_EQ(v.breaks, 0u) << "ratio " << ratio;
+        EXPECT_LT(v.measure, 1e-3) << "ratio " << ratio;
+        EXPECT_TRUE(v.stable()) << "ratio " << ratio;
+    }
 }
 
 // A welded tower of eight 4 cm glass cubes (10 MPa joints) hit at box 5 by a kinematic sphere at
