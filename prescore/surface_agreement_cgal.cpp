@@ -1,42 +1,28 @@
 // Closest points on every piece's render triangles with one CGAL AABB tree
-// (Simple_cartesian<double>: distances, no predicates that need exactness).
+// (prescore/triangle_tree_cgal.h: distances, no predicates that need exactness).
 #include "prescore/surface_agreement.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "prescore/triangle_tree_cgal.h"
 
 namespace shatter {
-
-namespace {
-
-using K = CGAL::Simple_cartesian<double>;
-using Triangle = K::Triangle_3;
-using Iterator = std::vector<Triangle>::const_iterator;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Iterator>>>;
-
-K::Point_3 point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-}  // namespace
 
 SurfaceAgreement surface_agreement(const TriangleMesh& input, const std::vector<RenderSurface>& surfaces,
                                    double crease_degrees, double normal_degrees) {
     SurfaceAgreement a;
-    std::vector<Triangle> triangles;
+    std::vector<TreeTriangle> triangles;
     std::vector<std::pair<uint32_t, uint32_t>> owner;  // (surface, triangle)
     for (uint32_t s = 0; s < surfaces.size(); ++s)
         for (uint32_t t = 0; t < surfaces[s].triangles.size(); ++t) {
             const Tri& tri = surfaces[s].triangles[t];
             const auto& v = surfaces[s].vertices;
-            triangles.emplace_back(point(v[tri[0]]), point(v[tri[1]]), point(v[tri[2]]));
+            triangles.emplace_back(tree_point(v[tri[0]]), tree_point(v[tri[1]]), tree_point(v[tri[2]]));
             owner.emplace_back(s, t);
         }
     if (triangles.empty() || input.vertices.empty()) return a;
-    Tree tree(triangles.cbegin(), triangles.cend());
+    TriangleTree tree(triangles.cbegin(), triangles.cend());
     tree.accelerate_distance_queries();
 
     std::vector<Vec3> sum(input.vertices.size(), Vec3::Zero());
@@ -51,7 +37,7 @@ SurfaceAgreement surface_agreement(const TriangleMesh& input, const std::vector<
     for (size_t i = 0; i < input.vertices.size(); ++i) {
         if (faces[i].empty()) continue;
         const Vec3& p = input.vertices[i];
-        const auto hit = tree.closest_point_and_primitive(point(p));
+        const auto hit = tree.closest_point_and_primitive(tree_point(p));
         const Vec3 q(hit.first.x(), hit.first.y(), hit.first.z());
         distance.push_back((q - p).norm());
         const Vec3 n = sum[i].normalized();

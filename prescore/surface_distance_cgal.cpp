@@ -4,41 +4,28 @@
 // deterministic.
 #include "prescore/surface_distance.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "prescore/triangle_tree_cgal.h"
 
 namespace shatter {
 
-namespace {
-
-// Plain doubles, no exact fallback: the filtered Epick predicates for ball/triangle tests fail
-// their filter so often near the surface that exact arithmetic cost 10x the time; a centroid's
-// distance rule does not need exactness, and IEEE doubles give the same answers on every run.
-using K = CGAL::Simple_cartesian<double>;
-using Triangle = K::Triangle_3;
-using Iterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-
-K::Point_3 point(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-}  // namespace
+// The tree is plain doubles, no exact fallback: the filtered Epick predicates for ball/triangle
+// tests fail their filter so often near the surface that exact arithmetic cost 10x the time; a
+// centroid's distance rule does not need exactness, and IEEE doubles give the same answers on
+// every run.
 
 std::vector<char> within_distance(const TriangleMesh& surface, const std::vector<Vec3>& points, double radius) {
     std::vector<char> within(points.size(), 0);
     if (surface.triangles.empty()) return within;
-    std::vector<Triangle> triangles;
+    std::vector<TreeTriangle> triangles;
     triangles.reserve(surface.triangles.size());
     for (const Tri& t : surface.triangles) {
-        triangles.emplace_back(point(surface.vertices[t[0]]), point(surface.vertices[t[1]]),
-                               point(surface.vertices[t[2]]));
+        triangles.emplace_back(tree_point(surface.vertices[t[0]]), tree_point(surface.vertices[t[1]]),
+                               tree_point(surface.vertices[t[2]]));
     }
-    const Tree tree(triangles.cbegin(), triangles.cend());
+    const TriangleTree tree(triangles.cbegin(), triangles.cend());
     const double r2 = radius * radius;
     for (size_t i = 0; i < points.size(); ++i) {
-        within[i] = tree.do_intersect(K::Sphere_3(point(points[i]), r2)) ? 1 : 0;
+        within[i] = tree.do_intersect(TreeKernel::Sphere_3(tree_point(points[i]), r2)) ? 1 : 0;
     }
     return within;
 }

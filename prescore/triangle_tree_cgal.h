@@ -1,8 +1,9 @@
-// The nearest-triangle lookup shared by the translation units that carry attributes from one
-// surface onto another (render_surface_cgal.cpp: normals; appearance_transfer_cgal.cpp: UVs,
-// colours, materials): a CGAL AABB tree over triangles in Simple_cartesian<double> (closest
-// points only, no predicate that needs exactness), and the barycentric weights they interpolate
-// with. Include from CGAL translation units only.
+// The triangle lookup shared by the translation units that ask a surface for its nearest point
+// (render_surface_cgal.cpp: normals; appearance_transfer_cgal.cpp: UVs, colours, materials;
+// surface_agreement_cgal.cpp: distances) or whether a ball meets it (surface_distance_cgal.cpp):
+// a CGAL AABB tree over triangles in Simple_cartesian<double> (no predicate that needs
+// exactness), and the barycentric weights the attribute transfers interpolate with. Include from
+// CGAL translation units only.
 #pragma once
 
 #include <algorithm>
