@@ -38,6 +38,7 @@
 #include "render/mesh_builder.h"
 #include "render/texture.h"
 #include "scenes/box_model.h"
+#include "support/duck.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 
@@ -512,8 +513,9 @@ TEST(GlbExport, RenderSurfacesExportIndexedWithTheirNormals) {
                 EXPECT_NEAR(nv.Length(), 1.0, 1e-5);
                 aiString material;
                 g.scene->mMaterials[mesh->mMaterialIndex]->Get(AI_MATKEY_NAME, material);
-                if (std::string(material.C_Str()).find("outer") != std::string::npos)
+                if (std::string(material.C_Str()).find("outer") != std::string::npos) {
                     EXPECT_NEAR(std::max({std::abs(nv.x), std::abs(nv.y), std::abs(nv.z)}), 1.0, 1e-5);
+                }
             }
         }
         EXPECT_EQ(faces, m.pieces[i].render->triangles.size());
@@ -550,15 +552,9 @@ std::pair<nlohmann::json, std::string> glb_chunks(const std::string& bytes) {
 // an outer material whose baseColorTexture resolves to it, outer primitives with TEXCOORD_0
 // using that material, fracture primitives without; and the Khronos validator finds no error.
 TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
-    const std::string duck = "/usr/share/assimp/models/Collada/duck.dae";
-    if (!fs::exists(duck)) GTEST_SKIP() << duck << " is missing (fix: scripts/install-deps.sh)";
-    MeshSettings mesh;
-    mesh.path = duck;
-    mesh.size = 0.2;
-    PrescoreSettings settings;
-    settings.pieces = 6;
-    settings.resolution = 12;
-    const Model m = prescore(mesh, settings, nullptr);
+    if (!fs::exists(testing_support::kDuck))
+        GTEST_SKIP() << testing_support::kDuck << " is missing (fix: scripts/install-deps.sh)";
+    const Model m = testing_support::prescore_duck();
     TempDir dir;
     export_glb(m, test_trajectory(m, 3, false), dir.file("duck.glb"));
     std::ifstream in(dir.file("duck.glb"), std::ios::binary);

@@ -19,22 +19,14 @@
 #include "render/srgb_encode.h"
 #include "render/texture.h"
 #include "scenes/render_test_scene.h"
+#include "support/duck.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
 namespace {
 
-const std::string kDuck = "/usr/share/assimp/models/Collada/duck.dae";
-
-Model prescore_duck(const std::string& path) {
-    MeshSettings mesh;
-    mesh.path = path;
-    mesh.size = 0.2;
-    PrescoreSettings settings;
-    settings.pieces = 6;
-    settings.resolution = 12;
-    return prescore(mesh, settings, nullptr);
-}
+using testing_support::kDuck;
+using testing_support::prescore_duck;
 
 // Hue (degrees) and saturation of an sRGB pixel.
 std::pair<double, double> hue_saturation(const uint8_t* p) {
