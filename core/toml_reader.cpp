@@ -22,6 +22,20 @@ const char* type_name(const toml::node& n) {
     return "a date or time";
 }
 
+// Keys that were renamed: a shot file written before the rename gets the new name and how to
+// write its value instead of "unknown key".
+struct RenamedKey {
+    const char* section;
+    const char* old_name;
+    const char* fix;
+};
+constexpr RenamedKey kRenamedKeys[] = {
+    {"render", "colour_mode",
+     "colour_mode was renamed colours: write colours = \"palette\" for colour_mode = \"pieces\", colours = "
+     "\"material\" for \"material\", or colours = \"input\" (the default: the input mesh's own colours and "
+     "textures)"},
+};
+
 }  // namespace
 
 toml::table parse_toml_file(const std::string& path) {
@@ -117,6 +131,8 @@ void TomlSection::finish() const {
         std::string hint = closest_word(key, allowed);
         std::string fix = hint.empty() ? "" : fmt::format("did you mean '{}'? ", hint);
         fix += fmt::format("keys allowed in [{}]: {}", name_, fmt::join(allowed, ", "));
+        for (const RenamedKey& r : kRenamedKeys)
+            if (name_ == r.section && key == r.old_name) fix = r.fix;
         const auto& src = k.source();
         std::string at = src.begin.line ? fmt::format("{}:{}", file_, src.begin.line) : where(&v);
         throw_input_error(at, fmt::format("unknown key '{}'", key_name(key.c_str())), fix);

@@ -93,6 +93,16 @@ TEST(ShotFile, UnknownKeyNamesFileLineAndSuggestsTheKnownKey) {
     EXPECT_NE(m.find("did you mean 'pieces'"), std::string::npos) << m;
 }
 
+TEST(ShotFile, ARenamedKeyNamesItsNewNameAndHowToWriteItsValue) {
+    TempDir dir;
+    std::string path = dir.write("a.toml", "[render]\nwidth = 320\ncolour_mode = \"pieces\"\n");
+    std::string m = load_error(path);
+    EXPECT_NE(m.find(path + ":3"), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown key 'render.colour_mode'"), std::string::npos) << m;
+    EXPECT_NE(m.find("colour_mode was renamed colours"), std::string::npos) << m;
+    EXPECT_NE(m.find("colours = \"palette\""), std::string::npos) << m;
+}
+
 TEST(ShotFile, UnknownSectionIsAnError) {
     TempDir dir;
     std::string m = load_error(dir.write("a.toml", "[mesh]\nscale = 1\n\n[prescor]\npieces = 3\n"));
