@@ -26,6 +26,7 @@
 #include "pipeline/run_metrics.h"
 #include "pipeline/sheets.h"
 #include "pipeline/stage_cache.h"
+#include "meshio/companions.h"
 #include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/render.h"
@@ -326,6 +327,11 @@ private:
         if (!shot_.mesh.path.empty()) {
             mesh["file"] = fs::path(shot_.mesh.path).filename().string();
             mesh["hash"] = file_hash(shot_.mesh.path);
+            // Its material libraries, buffers and textures: a changed texture re-runs prescore.
+            json companions = json::object();
+            const fs::path dir = fs::path(shot_.mesh.path).parent_path();
+            for (const std::string& f : companion_files(shot_.mesh.path)) companions[f] = file_hash((dir / f).string());
+            if (!companions.empty()) mesh["companions"] = companions;
         }
         json inputs = {{"mesh", mesh}, {"prescore", to_json(shot_.prescore)}};
         if (shot_.generate) inputs["generate"] = to_json(*shot_.generate);

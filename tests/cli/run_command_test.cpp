@@ -86,6 +86,27 @@ TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
     EXPECT_NE(slurp(out + "/summary.json").find("\"alpha\": 0.0"), std::string::npos);
 }
 
+// The mesh's material library and texture are inputs of prescore as much as the mesh file is.
+TEST(RunCommand, ChangingTheMeshsTextureRedoesPrescore) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    const std::string out = dir.file("out");
+    {
+        std::ofstream obj(dir.file("cube.obj"), std::ios::app);
+        obj << "mtllib cube.mtl\n";
+    }
+    dir.write("cube.mtl", "newmtl white\nKd 1 1 1\nmap_Kd skin.png\n");
+    dir.write("skin.png", "one");
+    const std::vector<std::string> run = {"run", shot, "-o", out, "--no-progress", "--stages", "prescore"};
+    ASSERT_EQ(run_shatter(run).exit_code, 0);
+    auto same = run_shatter(run);
+    EXPECT_NE(stage_status(same.out, "prescore").find("(up to date)"), std::string::npos) << same.out;
+    dir.write("skin.png", "two");
+    auto changed = run_shatter(run);
+    ASSERT_EQ(changed.exit_code, 0) << changed.err;
+    EXPECT_EQ(stage_status(changed.out, "prescore").find("("), std::string::npos) << changed.out;
+}
+
 TEST(RunCommand, BadOverridesAndStagesAreRefusedBeforeAnythingIsWritten) {
     TempDir dir;
     const std::string shot = write_cube_shot(dir);
