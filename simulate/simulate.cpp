@@ -377,10 +377,15 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         spdlog::warn("simulate: the joints' forces do not match their stretch: up to {:.1f}% of the strength off "
                      "(constraint {}, pieces {} and {}, at {:.4f} s, before the first break; tolerance {:g}%): the "
                      "solve, or a contact's push, left them apart and the energy books miss the difference "
-                     "(docs/physics.md section 5a; more [simulate] iterations help where the solve is the cause, "
-                     "now {})",
+                     "(docs/physics.md sections 5a and 5b; {})",
                      100 * r.residual, r.constraint, world.piece_a(size_t(r.constraint)),
-                     world.piece_b(size_t(r.constraint)), r.time, 100 * kResidualTolerance, in.simulate.iterations);
+                     world.piece_b(size_t(r.constraint)), r.time, 100 * kResidualTolerance,
+                     direct ? fmt::format("more [simulate] iterations let the direct solve converge further, now {}",
+                                          in.simulate.iterations)
+                            : fmt::format("[simulate] joints = \"direct\" solves the joints exactly and moves "
+                                          "joined pieces together when contacts push them; or more [simulate] "
+                                          "iterations, now {}",
+                                          in.simulate.iterations));
     return out;
 }
 
