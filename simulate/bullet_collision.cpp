@@ -3,18 +3,12 @@
 #include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
+#include <typeinfo>
+
 namespace shatter {
 
 
 namespace {
-
-// Over-estimates of how far any point r from a body's centre can have moved towards -axis (for
-// the body on side A) between two transforms: -axis.(c1 - c0) + |R1 - R0|_F r.
-btScalar approach(const btTransform& t0, const btTransform& t1, const btVector3& axis, btScalar radius) {
-    btScalar f2 = 0;
-    for (int r = 0; r < 3; ++r) f2 += (t1.getBasis()[r] - t0.getBasis()[r]).length2();
-    return -axis.dot(t1.getOrigin() - t0.getOrigin()) + btSqrt(f2) * radius;
-}
 
 // The farthest a hull's point (margin included) can be from its body's centre.
 btScalar reach(const btConvexShape* s) {
@@ -27,14 +21,28 @@ btScalar reach(const btConvexShape* s) {
 
 }  // namespace
 
-bool PieceConvexAlgorithm::measure_gap(const btConvexShape* sa, const btConvexShape* sb, const btTransform& ta,
-                                       const btTransform& tb) {
+bool PieceConvexAlgorithm::measure_gap(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b) {
+    has_gap_ = false;
+    const auto* sa = static_cast<const btConvexShape*>(a->getCollisionShape());
+    const auto* sb = static_cast<const btConvexShape*>(b->getCollisionShape());
+    const btTransform& ta = a->getWorldTransform();
+    const btTransform& tb = b->getWorldTransform();
     const btVector3 pa = ta(sa->localGetSupportVertexWithoutMarginNonVirtual((-axis_) * ta.getBasis()));
     const btVector3 pb = tb(sb->localGetSupportVertexWithoutMarginNonVirtual(axis_ * tb.getBasis()));
     gap_ = axis_.dot(pa - pb);
-    ta_ = ta, tb_ = tb;
-    has_gap_ = gap_ > needed_;
-    return has_gap_;
+    if (!(gap_ > needed_)) return false;
+    // The state for apart(), when the turns of both bodies are kept.
+    const btBroadphaseProxy* proxy_a = a->getCollisionObject()->getBroadphaseHandle();
+    const btBroadphaseProxy* proxy_b = b->getCollisionObject()->getBroadphaseHandle();
+    const std::vector<btScalar>& turned = static_cast<PieceDispatcher*>(m_dispatcher)->turned;
+    if (proxy_a && proxy_b && size_t(proxy_a->m_uniqueId) < turned.size() && size_t(proxy_b->m_uniqueId) < turned.size() &&
+        &ta == &a->getCollisionObject()->getWorldTransform() && &tb == &b->getCollisionObject()->getWorldTransform()) {
+        id_a_ = proxy_a->m_uniqueId, id_b_ = proxy_b->m_uniqueId;
+        separation_ = axis_.dot(ta.getOrigin() - tb.getOrigin());
+        turned_a_ = turned[size_t(id_a_)], turned_b_ = turned[size_t(id_b_)];
+        has_gap_ = true;
+    }
+    return true;
 }
 
 void PieceConvexAlgorithm::processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
@@ -45,20 +53,11 @@ void PieceConvexAlgorithm::processCollision(const btCollisionObjectWrapper* a, c
         btConvexConvexAlgorithm::processCollision(a, b, info, out);
         return;
     }
-    const auto* shape_a = static_cast<const btConvexShape*>(a->getCollisionShape());
-    const auto* shape_b = static_cast<const btConvexShape*>(b->getCollisionShape());
-    const btTransform& ta = a->getWorldTransform();
-    const btTransform& tb = b->getWorldTransform();
-    if (empty_ && has_axis_) {
-        if (has_gap_ && gap_ - approach(ta_, ta, axis_, radius_a_) - approach(tb_, tb, -axis_, radius_b_) > needed_) {
-            return;
-        }
-        if (measure_gap(shape_a, shape_b, ta, tb)) {
-            return;
-        }
-    }
+    if (empty_ && has_axis_ && measure_gap(a, b)) return;
     // btConvexConvexAlgorithm::processCollision for two hulls without polyhedral features and
     // without perturbation, keeping GJK's separating axis.
+    const auto* shape_a = static_cast<const btConvexShape*>(a->getCollisionShape());
+    const auto* shape_b = static_cast<const btConvexShape*>(b->getCollisionShape());
     const btScalar margins = shape_a->getMarginNonVirtual() + shape_b->getMarginNonVirtual();
     const btScalar threshold = manifold->getContactBreakingThreshold();
     out->setPersistentManifold(manifold);
@@ -69,8 +68,8 @@ void PieceConvexAlgorithm::processCollision(const btCollisionObjectWrapper* a, c
     gjk.setMinkowskiB(shape_b);
     input.m_maximumDistanceSquared = margins + threshold + out->m_closestPointDistanceThreshold;
     input.m_maximumDistanceSquared *= input.m_maximumDistanceSquared;
-    input.m_transformA = ta;
-    input.m_transformB = tb;
+    input.m_transformA = a->getWorldTransform();
+    input.m_transformB = b->getWorldTransform();
     gjk.getClosestPoints(input, *out, info.m_debugDraw);
     out->refreshContactPoints();
     empty_ = manifold->getNumContacts() == 0;
@@ -85,7 +84,7 @@ void PieceConvexAlgorithm::processCollision(const btCollisionObjectWrapper* a, c
     needed_ = btScalar(1.001) * (margins + threshold) + btScalar(1e-9);
     radius_a_ = reach(shape_a) * btScalar(1.001);
     radius_b_ = reach(shape_b) * btScalar(1.001);
-    measure_gap(shape_a, shape_b, ta, tb);
+    measure_gap(a, b);
 }
 
 void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
@@ -100,12 +99,47 @@ void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dis
         }
         return;
     }
+    // A pair proven apart (processCollision would do nothing) and a linked pair (which never
+    // collides) are answered without touching more than the bodies' centres.
+    auto& pieces = static_cast<PieceDispatcher&>(dispatcher);
+    if (pair.m_algorithm && typeid(*pair.m_algorithm) == typeid(PieceConvexAlgorithm) &&
+        static_cast<const PieceConvexAlgorithm*>(pair.m_algorithm)->apart(*a, *b, pieces.turned.data()))
+        return;
+    if (pieces.linked.contains(a->m_uniqueId, b->m_uniqueId)) return;
     btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
 }
 
+void PieceWorld::addConstraint(btTypedConstraint* c, bool disable_collisions_between_linked_bodies) {
+    btDiscreteDynamicsWorld::addConstraint(c, disable_collisions_between_linked_bodies);
+    const btBroadphaseProxy* a = c->getRigidBodyA().getBroadphaseHandle();
+    const btBroadphaseProxy* b = c->getRigidBodyB().getBroadphaseHandle();
+    // (A body outside the broadphase is left to needsCollision.)
+    if (!disable_collisions_between_linked_bodies || !a || !b) return;
+    if (linking_.emplace(c, std::pair(a->m_uniqueId, b->m_uniqueId)).second) pieces_->linked.add(a->m_uniqueId, b->m_uniqueId, 1);
+}
+
+void PieceWorld::removeConstraint(btTypedConstraint* c) {
+    btDiscreteDynamicsWorld::removeConstraint(c);
+    const auto it = linking_.find(c);
+    if (it == linking_.end()) return;
+    pieces_->linked.add(it->second.first, it->second.second, -1);
+    linking_.erase(it);
+}
+
 void PieceWorld::updateAabbs() {
+    std::vector<btScalar>& turned = pieces_->turned;
     for (int i = 0; i < m_collisionObjects.size(); i++) {
         btCollisionObject* o = m_collisionObjects[i];
+        if (const btBroadphaseProxy* proxy = o->getBroadphaseHandle()) {  // its turn since the last call
+            const size_t id = size_t(proxy->m_uniqueId);
+            const btMatrix3x3& r = o->getWorldTransform().getBasis();
+            if (id >= turned.size()) turned.resize(id + 1, 0), rotation_.resize(id + 1, btMatrix3x3::getIdentity());
+            btScalar f2 = 0;
+            for (int row = 0; row < 3; ++row) f2 += (r[row] - rotation_[id][row]).length2();
+            // Rounded up: the sum must not fall short of the turns.
+            turned[id] += btSqrt(f2) * btScalar(1 + 1e-12);
+            rotation_[id] = r;
+        }
         if (!(m_forceUpdateAllAabbs || o->isActive())) continue;
         const btCollisionShape* shape = o->getCollisionShape();
         const btScalar t = shape->getContactBreakingThreshold(gContactBreakingThreshold);

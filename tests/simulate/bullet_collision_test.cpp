@@ -1,7 +1,9 @@
 // PieceConvexAlgorithm (simulate/bullet_collision.h) skips GJK for pairs of hulls it can prove
-// apart; it must find the same contacts as Bullet's btConvexConvexAlgorithm: two worlds stepped
-// side by side, one per dispatcher, with a heap of irregular hulls thrown together so that pairs
-// come near, touch, rest and part again.
+// apart, and the near callback skips such pairs and linked ones before touching the bodies; they
+// must find the same contacts as Bullet's btConvexConvexAlgorithm and needsCollision: two worlds
+// stepped side by side, one with the skips and one without, with a heap of irregular spinning
+// hulls thrown together so that pairs come near, touch, rest and part again, some of them linked
+// by constraints that break.
 #include <gtest/gtest.h>
 
 #include <btBulletDynamicsCommon.h>
@@ -20,17 +22,19 @@ namespace {
 // and a velocity towards the heap's centre, above the ground.
 struct Rig {
     btDefaultCollisionConfiguration config;
-    std::unique_ptr<btCollisionDispatcher> dispatcher;
+    std::unique_ptr<PieceDispatcher> dispatcher;
     btDbvtBroadphase broadphase;
     btSequentialImpulseConstraintSolver solver;
-    std::unique_ptr<btDiscreteDynamicsWorld> world;
+    std::unique_ptr<PieceWorld> world;
     btStaticPlaneShape ground_shape{btVector3(0, 1, 0), 0};
     std::vector<std::unique_ptr<btConvexHullShape>> shapes;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
+    std::vector<std::unique_ptr<btPoint2PointConstraint>> joints;
 
-    explicit Rig(bool ours) {
-        dispatcher = ours ? std::make_unique<PieceDispatcher>(&config) : std::make_unique<btCollisionDispatcher>(&config);
-        world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), &broadphase, &solver, &config);
+    explicit Rig(bool skip) {
+        dispatcher = std::make_unique<PieceDispatcher>(&config, skip);
+        dispatcher->setNearCallback(exact_aabb_near_callback);
+        world = std::make_unique<PieceWorld>(dispatcher.get(), &broadphase, &solver, &config);
         world->setGravity(btVector3(0, -9.81, 0));
         add(0, &ground_shape, btTransform::getIdentity());
         uint64_t seed = 12345;
@@ -48,6 +52,14 @@ struct Rig {
             b->setAngularVelocity(btVector3(next(), next(), next()) * 60);
             b->setActivationState(DISABLE_DEACTIVATION);
         }
+        for (int i = 0; i + 1 < 27; i += 3) {  // pairs of neighbours in a row, linked at their midpoint
+            btRigidBody& a = *bodies[size_t(i) + 1];
+            btRigidBody& b = *bodies[size_t(i) + 2];
+            const btVector3 mid = 0.5 * (a.getWorldTransform().getOrigin() + b.getWorldTransform().getOrigin());
+            joints.push_back(std::make_unique<btPoint2PointConstraint>(a, b, a.getWorldTransform().inverse() * mid,
+                                                                       b.getWorldTransform().inverse() * mid));
+            world->addConstraint(joints.back().get(), true);
+        }
     }
     btRigidBody* add(double mass, btCollisionShape* shape, const btTransform& t) {
         btVector3 inertia(0, 0, 0);
@@ -60,6 +72,8 @@ struct Rig {
         return bodies.back().get();
     }
     ~Rig() {
+        for (auto& j : joints)
+            if (j) world->removeConstraint(j.get());
         for (auto& b : bodies) world->removeRigidBody(b.get());
     }
 };
@@ -76,6 +90,12 @@ TEST(PieceConvexAlgorithm, FindsTheSameContactsAsBulletsOwn) {
     Rig bullet(false), ours(true);
     int apart = 0, touching = 0;  // pairs (summed over steps) with an empty manifold, with points
     for (int step = 0; step < 480; ++step) {
+        if (step % 40 == 20 && !bullet.joints.empty()) {  // a link breaks: its pair collides again
+            for (Rig* r : {&bullet, &ours}) {
+                r->world->removeConstraint(r->joints.back().get());
+                r->joints.pop_back();
+            }
+        }
         bullet.world->stepSimulation(1.0 / 480, 0, 1.0 / 480);
         ours.world->stepSimulation(1.0 / 480, 0, 1.0 / 480);
         ASSERT_EQ(bullet.dispatcher->getNumManifolds(), ours.dispatcher->getNumManifolds()) << "step " << step;
@@ -97,8 +117,8 @@ TEST(PieceConvexAlgorithm, FindsTheSameContactsAsBulletsOwn) {
     }
     // The heap did what it is for: hulls near one another without touching (the pairs whose GJK
     // the algorithm may skip) and hulls in contact.
-    EXPECT_GT(apart, 1000);
-    EXPECT_GT(touching, 1000);
+    EXPECT_GT(apart, 500);
+    EXPECT_GT(touching, 500);
 }
 
 }  // namespace
