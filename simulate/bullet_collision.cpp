@@ -7,7 +7,6 @@
 
 namespace shatter {
 
-
 namespace {
 
 // The farthest a hull's point (margin included) can be from its body's centre.

@@ -16,12 +16,6 @@
 
 namespace shatter {
 
-// Skips the narrow phase for pairs of pieces that overlapped where they started without being
-// joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
-// contact would push them apart, load their constraints and break them in free fall. A pair is
-// released once its bounding boxes part.
-class PieceDispatcher;
-
 // Convex-convex contact between two pieces' hulls (btConvexHullShape), as
 // btConvexConvexAlgorithm finds it, with the GJK skipped for a pair that is far apart: GJK's
 // distance is that of a point of the hulls' Minkowski difference, never less than the true
@@ -81,6 +75,10 @@ private:
     btScalar turned_a_ = 0, turned_b_ = 0;  // PieceDispatcher::turned of A and B when measured
 };
 
+// Skips the narrow phase for pairs of pieces that overlapped where they started without being
+// joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
+// contact would push them apart, load their constraints and break them in free fall. A pair is
+// released once its bounding boxes part.
 class PieceDispatcher : public btCollisionDispatcher {
 public:
     // Pairs of convex hulls (the pieces' parts) collide with PieceConvexAlgorithm; with
