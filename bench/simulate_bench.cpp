@@ -34,10 +34,19 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
     const SimulationResult r = simulate(model, in, "bench");
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%.4f,%.1f,%.1f,%.6f,%.3f\n", name,
+    // The recorded poses' bytes, hashed (FNV-1a): two builds that agree here made the same film.
+    uint64_t hash = 1469598103934665603ull;
+    for (const BodyPose& p : r.trajectory.poses) {
+        const float f[7] = {p.position.x(), p.position.y(), p.position.z(), p.rotation.w(),
+                            p.rotation.x(),  p.rotation.y(),  p.rotation.z()};
+        const auto* bytes = reinterpret_cast<const unsigned char*>(f);
+        for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+    }
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f\n", name,
                 in.simulate.joints == JointSolve::Direct ? "+direct" : "", model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
-                r.breaks.size(), s, double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
+                r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
+                double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
                 100.0 * r.energize_seconds / s);
     std::fflush(stdout);
 }
@@ -70,7 +79,7 @@ int main(int argc, char** argv) {
     const std::string alphas = argc > 3 ? argv[3] : "01";
     if (argc > 4) g_joints = std::string(argv[4]) == "direct" ? JointSolve::Direct : JointSolve::Iterative;
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
-    std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
+    std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
                 "energize_percent\n");
 
     if (wanted("bunny")) {

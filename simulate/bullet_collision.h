@@ -2,16 +2,78 @@
 // sections 5 and 6): which pairs the narrow phase sees, and how tight the broadphase boxes are.
 #pragma once
 
+#include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
 
 namespace shatter {
+
+// Convex-convex contact between two pieces' hulls (btConvexHullShape), as
+// btConvexConvexAlgorithm finds it, with the GJK skipped for a pair that is far apart: GJK's
+// distance is that of a point of the hulls' Minkowski difference, never less than the true
+// distance, and a point found farther apart than the manifold's breaking threshold is not kept.
+// So when the pair's manifold holds no point and the hulls are provably apart by more than their
+// margins plus that threshold, GJK could add nothing and is skipped: the same contacts to the bit.
+// The proof: the gap between the hulls along the axis GJK last separated them by (their extents
+// along it: two support vertices), less how far the bodies have moved since towards each other
+// along it: their centres' approach along the axis, plus for each body r |R1 - R0|_F (a point r
+// from a body's centre moves by at most that when its rotation goes from R0 to R1), |R1 - R0|_F
+// bounded by the sum of the body's turns step by step (PieceDispatcher::turned). The extents are
+// measured again when that bound runs out. The bound alone (apart()) needs only the pair's own
+// state and the bodies' centres: exact_aabb_near_callback asks it before anything else.
+class PieceConvexAlgorithm : public btConvexConvexAlgorithm {
+public:
+    PieceConvexAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                         const btCollisionObjectWrapper* b, btConvexPenetrationDepthSolver* pd)
+        : btConvexConvexAlgorithm(ci.m_manifold, ci, a, b, pd, 0, 3), pd_(pd), own_(ci.m_manifold == nullptr) {}
+    void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
+                          const btDispatcherInfo& info, btManifoldResult* out) override;
+    // The pair of these proxies (in this order) is proven apart by the bound: processCollision
+    // would do nothing.
+    bool apart(const btBroadphaseProxy& a, const btBroadphaseProxy& b, const btScalar* turned) const {
+        if (!has_gap_ || a.m_uniqueId != id_a_ || b.m_uniqueId != id_b_) return false;
+        const btVector3& ca = static_cast<const btCollisionObject*>(a.m_clientObject)->getWorldTransform().getOrigin();
+        const btVector3& cb = static_cast<const btCollisionObject*>(b.m_clientObject)->getWorldTransform().getOrigin();
+        return gap_ + (axis_.dot(ca - cb) - separation_) - radius_a_ * (turned[id_a_] - turned_a_) -
+                   radius_b_ * (turned[id_b_] - turned_b_) >
+               needed_;
+    }
+
+    struct CreateFunc : btCollisionAlgorithmCreateFunc {
+        btGjkEpaPenetrationDepthSolver pd;
+        btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                       const btCollisionObjectWrapper* a,
+                                                       const btCollisionObjectWrapper* b) override {
+            // Not from the dispatcher's pool, whose elements may be smaller (freeing tells them apart).
+            void* mem = btAlignedAlloc(sizeof(PieceConvexAlgorithm), 16);
+            return new (mem) PieceConvexAlgorithm(ci, a, b, &pd);
+        }
+    };
+
+private:
+    // Measures the gap along axis_ at the bodies' transforms; whether it proves them apart.
+    bool measure_gap(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b);
+    btConvexPenetrationDepthSolver* pd_;
+    bool own_;               // the manifold is this pair's own (not a compound's, shared)
+    bool empty_ = false;     // the manifold held no point after this algorithm's last GJK
+    bool has_axis_ = false;  // axis_ holds the last GJK's separating direction
+    bool has_gap_ = false;   // the last measured gap proves the pair apart; the state below holds
+    int id_a_ = -1, id_b_ = -1;  // the bodies' proxy ids
+    btScalar needed_ = 0;    // the gap that proves no contact (unit: m)
+    btScalar radius_a_ = 0, radius_b_ = 0;  // the hulls' farthest points from their bodies' centres
+    btVector3 axis_{0, 0, 0};  // world, unit, from B towards A
+    btScalar gap_ = 0;       // min over A of axis.a - max over B of axis.b when measured (unit: m)
+    btScalar separation_ = 0;  // axis.(centre A - centre B) when measured (unit: m)
+    btScalar turned_a_ = 0, turned_b_ = 0;  // PieceDispatcher::turned of A and B when measured
+};
 
 // Skips the narrow phase for pairs of pieces that overlapped where they started without being
 // joined (pieces touching along an edge, or whose convex parts reach into a neighbour): their
@@ -19,7 +81,17 @@ namespace shatter {
 // released once its bounding boxes part.
 class PieceDispatcher : public btCollisionDispatcher {
 public:
-    using btCollisionDispatcher::btCollisionDispatcher;
+    // Pairs of convex hulls (the pieces' parts) collide with PieceConvexAlgorithm; with
+    // skip_apart false, with Bullet's btConvexConvexAlgorithm (for comparison).
+    explicit PieceDispatcher(btCollisionConfiguration* config, bool skip_apart = true)
+        : btCollisionDispatcher(config), skip_apart(skip_apart) {
+        if (skip_apart) registerCollisionCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE, &hulls_);
+    }
+    const bool skip_apart;
+    // Per proxy id: the sum over the steps so far of |R1 - R0|_F, R0 and R1 a body's rotation
+    // before and after the step (PieceWorld::updateAabbs), bounding how far it has turned since
+    // any earlier step: |R(t1) - R(t0)|_F <= turned(t1) - turned(t0).
+    std::vector<btScalar> turned;
     // The ignored pairs of pieces, looked up for every pair of every step: a hash set, and per
     // piece how many ignored pairs it is in, so that most pairs are passed without a lookup.
     class Ignored {
@@ -59,11 +131,49 @@ public:
         std::vector<uint32_t> count_;         // per piece
     };
     Ignored ignored;
+
+    // The pairs of bodies joined by constraints added with "disable collisions between linked
+    // bodies", by their broadphase proxies' ids: btCollisionDispatcher::needsCollision finds them
+    // by walking both bodies' lists of linked bodies (one entry per constraint, ~60 for a piece
+    // of the 1,000-piece bunny), touching memory of both bodies for every pair of every step;
+    // the near callback asks here first, from the proxies it has read already.
+    class Linked {
+    public:
+        void add(int a, int b, int delta) {
+            for (const auto& [p, q] : {std::pair(a, b), std::pair(b, a)}) {
+                if (size_t(p) >= others_.size()) others_.resize(size_t(p) + 1);
+                auto& list = others_[size_t(p)];
+                auto it = std::find_if(list.begin(), list.end(), [q = q](const auto& e) { return e.first == q; });
+                if (it == list.end()) it = list.insert(list.end(), {q, 0});
+                it->second += delta;
+                if (it->second == 0) list.erase(it);
+            }
+        }
+        bool contains(int a, int b) const {
+            if (size_t(a) >= others_.size()) return false;
+            for (const auto& e : others_[size_t(a)])
+                if (e.first == b) return true;
+            return false;
+        }
+
+    private:
+        std::vector<std::vector<std::pair<int, int>>> others_;  // per proxy id: (other id, constraints)
+    };
+    Linked linked;
+
+    // btCollisionDispatcher::needsCollision, with the linked pairs (the only bodies
+    // checkCollideWith refuses: nothing else marks bodies to ignore) from `linked`.
     bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
         if (a->getUserIndex() >= 0 && b->getUserIndex() >= 0 && ignored.contains(a->getUserIndex(), b->getUserIndex()))
             return false;
-        return btCollisionDispatcher::needsCollision(a, b);
+        const btBroadphaseProxy* pa = a->getBroadphaseHandle();
+        const btBroadphaseProxy* pb = b->getBroadphaseHandle();
+        if (!pa || !pb) return btCollisionDispatcher::needsCollision(a, b);
+        return (a->isActive() || b->isActive()) && !linked.contains(pa->m_uniqueId, pb->m_uniqueId);
     }
+
+private:
+    PieceConvexAlgorithm::CreateFunc hulls_;
 };
 
 // The proxies' boxes decide here before the narrow phase (a broadphase may keep a pair whose
@@ -80,9 +190,20 @@ void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dis
 
 class PieceWorld : public btDiscreteDynamicsWorld {
 public:
-    using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+    PieceWorld(PieceDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
+               btCollisionConfiguration* config)
+        : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, config), pieces_(dispatcher) {}
     // btCollisionWorld::updateSingleAabb with the shape's own padding.
     void updateAabbs() override;
+    // Bullet's, keeping the dispatcher's linked pairs (PieceDispatcher::Linked) in step.
+    void addConstraint(btTypedConstraint* c, bool disable_collisions_between_linked_bodies) override;
+    void removeConstraint(btTypedConstraint* c) override;
+
+private:
+    PieceDispatcher* pieces_;
+    std::vector<btMatrix3x3> rotation_;  // per proxy id: the body's rotation at the last updateAabbs
+    // The constraints added with collisions disabled, and their bodies' proxy ids.
+    std::unordered_map<const btTypedConstraint*, std::pair<int, int>> linking_;
 };
 
 // The deepest point contactPairTest found between two bodies (the most negative distance: the
