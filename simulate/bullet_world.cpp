@@ -118,6 +118,10 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     if (setup.direct_joints) info.m_splitImpulseTurnErp = 1;
     info.m_splitImpulse = 1;  // penetration is resolved without adding kinetic energy
     info.m_splitImpulsePenetrationThreshold = 0;
+    // A step's iterations end early once no row's update changes a relative velocity by more
+    // than kSettledSpeed (Bullet's residual is the largest squared change): a falling or resting
+    // structure settles in a few passes (docs/physics.md section 6).
+    info.m_leastSquaresResidualThreshold = btScalar(kSettledSpeed * kSettledSpeed);
 
     // Static scene.
     if (setup.scene.ground) {
