@@ -373,6 +373,42 @@ def smallest():
               f"({r['shipped_size']}; {num(r['shipped_cpu_per_sim_s']):.3g} s/s) | {num(r['shipped_worst_ratio']):.3g} |")
 
 
+def continuum():
+    """The rigid method at each alpha against the continuum reference (fem_compare's fem_SCENE.csv):
+    CPU seconds against the mean energy error, one panel per scene, the reference's own point at
+    the error axis's floor (its error is 0 by definition)."""
+    scenes = [s for s in ["beam", "chain", "plate", "bunny", "corpus"] if read(f"fem_{s}.csv")]
+    if not scenes:
+        return
+    fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.4), squeeze=False)
+    floor = 1e-3
+    for ax, scene in zip(axes[0], scenes):
+        rows = read(f"fem_{scene}.csv")
+        rigid = [r for r in rows if r["method"] == "rigid"]
+        ref = [r for r in rows if r["method"] != "rigid"]
+        xs = [num(r["cpu_s"]) for r in rigid]
+        ys = [max(num(r["energy_error"]), floor) for r in rigid]
+        ax.plot(xs, ys, "o", color="C0", ms=5, label="rigid, energized")
+        best = min(rigid, key=lambda r: num(r["energy_error"]))
+        for r, x, y in zip(rigid, xs, ys):
+            ax.annotate(f"{num(r['alpha']):g}", (x, y), fontsize=7, xytext=(3, 2), textcoords="offset points")
+            if r is best:
+                ax.plot([x], [y], "o", mfc="none", mec="r", ms=11, mew=1.5)
+        for r in ref:
+            ax.plot([num(r["cpu_s"])], [floor], "s", color="k", ms=7, label="reference (FEM; error 0)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(scene)
+        ax.set_xlabel("CPU s per run")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0][0].set_ylabel("mean energy error against the reference")
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8, bbox_to_anchor=(0.5, -0.1))
+    fig.suptitle("The rigid method against the continuum reference: cost and error per alpha (red ring: best alpha)",
+                 fontsize=10)
+    save(fig, "study-continuum.png")
+
+
 if __name__ == "__main__":
     cost_error()
     first_break()
@@ -381,3 +417,4 @@ if __name__ == "__main__":
     methods()
     tables()
     smallest()
+    continuum()
