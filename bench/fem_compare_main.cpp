@@ -11,8 +11,9 @@
 //   start to move) with steps of H to 10 ms after its first break and of H2 from then on; the
 //   energies are the ten links' (the driven end cubes left out). Writes fem_chain.csv into --out.
 // --scene plate | bunny | corpus: a dropped object against bench/fem_scene.h on the model's own
-//   tets (the plate, which has none: Kuhn tets, --cells across a cube; the others: prescore's,
-//   --refine 1:8 subdivisions). plate: assets/plate.toml; bunny: assets/bunny_sphere.toml (the
+//   tets (the plate, which has none: Kuhn tets, --cells across a cube, and a second reference one
+//   cell coarser, its row after the reference's; the others: prescore's, --refine 1:8
+//   subdivisions). plate: assets/plate.toml; bunny: assets/bunny_sphere.toml (the
 //   hollow bunny onto a sphere); corpus: the default shot of `shatter run` on glmark2's
 //   asteroid-low.3ds with 4 pieces. Young's modulus is the shot's stiffness (N/m^3) times the
 //   length it stands for (the plate's cube side; a prescored model's mean tet edge) unless
@@ -22,9 +23,8 @@
 //               [--step-after H2] [--after S] [--young E] [--poisson NU] [--set KEY=VALUE] [--out DIR]
 //   (beam: 4 cells across, h = 2e-4 s; chain: 2 cells across, h = 2.5e-6 s, h2 = 2.5e-5 s, 0.5 s:
 //   at h = 1e-5 s one end joint lets go, at 5e-6 s and 2.5e-6 s both, docs/accuracy.md section 8.2;
-//   plate: 2 cells, h = 1e-5 s, h2 = 1e-4 s; bunny and corpus: h = h2 = 1e-4 s)
+//   plate: 3 cells, h = 1e-5 s, h2 = 1e-4 s; bunny and corpus: h = h2 = 1e-4 s)
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -170,9 +170,12 @@ Row reference_row(const std::string& method, double first_break, size_t broken, 
 }
 
 // Prints the markdown table and writes the CSV of the rigid rows and the reference (the last
-// row); returns the best-matching alpha and its error.
-std::pair<double, double> report(const std::vector<Row>& rows, const Table& t, const std::string& out) {
-    const Row& ref = rows.back();
+// row), then of `coarser` references (their error against the reference: the mesh's own);
+// returns the best-matching alpha and its error.
+std::pair<double, double> report(std::vector<Row> rows, const Table& t, const std::string& out,
+                                 const std::vector<Row>& coarser = {}) {
+    const Row ref = rows.back();
+    rows.insert(rows.end(), coarser.begin(), coarser.end());
     std::string header = "method,alpha,first_break_s,broken,of,";
     if (t.joints) header += "joints,";
     if (t.pairs) header += "separated_pairs,of_pairs,shared_with_reference,";
@@ -280,7 +283,7 @@ int compare_chain(uint32_t cells, double h, double h_after, double after, const 
 }
 
 struct SceneArgs {
-    uint32_t cells = 2, refine = 0;
+    uint32_t cells = 3, refine = 0;
     double h = 0, h_after = 0, after = 0.5, young = 0, poisson = 0.2;
     std::vector<std::string> sets;
 };
@@ -316,11 +319,30 @@ int compare_dropped(const std::string& scene, const SceneArgs& a, const std::str
                  "rho %g, strength %.4g Pa\n",
                  scene.c_str(), model.pieces.size(), model.mesh.tets.size(), model.constraints.size(), fs.material.young,
                  shot.material.stiffness, l, fs.material.poisson, fs.material.density, fs.strength.tensile);
-    const std::clock_t c0 = std::clock();
-    const fem::FemSceneResult f = fem::run_fem_scene(model, shot.scene, shot.object, fs);
-    const double fem_cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-    std::fprintf(stderr, "fem: %.1f s, %ld steps (%ld halved, %ld unconverged), %zu tets, %zu ties, start %.4f s\n",
-                 f.seconds, f.steps, f.halved_steps, f.unconverged_steps, f.tets, f.ties, f.start_time);
+    const auto run = [&](const fem::FemSceneSettings& settings, const std::string& what, fem::FemSceneResult& f) {
+        const std::clock_t c0 = std::clock();
+        f = fem::run_fem_scene(model, shot.scene, shot.object, settings);
+        const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+        std::fprintf(stderr, "fem: %.1f s, %ld steps (%ld halved, %ld unconverged), %zu tets, %zu ties, start %.4f s\n",
+                     f.seconds, f.steps, f.halved_steps, f.unconverged_steps, f.tets, f.ties, f.start_time);
+        Row r = reference_row(fmt::format("fem {}, h {:g} / {:g}", what, settings.h, settings.h_after), f.first_break,
+                              f.broken, f.ties, f.fragments, f.at_01, f.at_05, cpu);
+        r.separated = f.separated;
+        return r;
+    };
+    const std::string what = model.mesh.tets.empty() ? fmt::format("{} cells", a.cells)
+                                                     : a.refine ? fmt::format("prescore's tets / {}", 1 << (3 * a.refine))
+                                                                : std::string("prescore's tets");
+    fem::FemSceneResult f;
+    const Row ref = run(fs, what, f);
+    // A box model's reference also one cell coarser across a box: how far the mesh moves it.
+    std::vector<Row> coarser;
+    if (model.mesh.tets.empty() && a.cells > 1) {
+        fem::FemSceneSettings c1 = fs;
+        c1.box_cells = a.cells - 1;
+        fem::FemSceneResult f1;
+        coarser.push_back(run(c1, fmt::format("{} cells", c1.box_cells), f1));
+    }
 
     Table t;
     t.csv_name = "fem_" + scene + ".csv";
@@ -334,14 +356,8 @@ int compare_dropped(const std::string& scene, const SceneArgs& a, const std::str
     c.input.simulate.auto_duration = false;
     c.input.simulate.duration = f.start_time + 0.3 + a.after;
     std::vector<Row> rows = rigid_rows(c, a.after, 0, uint32_t(model.pieces.size()) - 1, t);
-    const std::string what = model.mesh.tets.empty() ? fmt::format("{} cells", a.cells)
-                                                     : a.refine ? fmt::format("prescore's tets / {}", 1 << (3 * a.refine))
-                                                                : std::string("prescore's tets");
-    Row ref = reference_row(fmt::format("fem {}, h {:g} / {:g}", what, fs.h, fs.h_after), f.first_break, f.broken, f.ties,
-                            f.fragments, f.at_01, f.at_05, fem_cpu);
-    ref.separated = f.separated;
     rows.push_back(ref);
-    const auto [best_alpha, best] = report(rows, t, out);
+    const auto [best_alpha, best] = report(rows, t, out, coarser);
     std::printf("reference: %zu tets, %zu ties over %zu touching pairs; run from %.4f s (free fall), %ld steps (%ld halved, "
                 "%ld unconverged); elastic energy the step before the first break %.4g J; last break %.4f s; impact "
                 "energy %.4g J; complete %d\n",
@@ -355,7 +371,7 @@ int compare_dropped(const std::string& scene, const SceneArgs& a, const std::str
 }  // namespace
 
 int main(int argc, char** argv) {
-    spdlog::set_level(spdlog::level::warn);
+    spdlog::set_level(spdlog::level::err);  // the rigid runs' warnings would go into the printed tables
     SceneArgs a;
     uint32_t cells = 0;
     std::string out = "bench/results/study", scene = "beam";
