@@ -34,10 +34,16 @@ fuzz: deps
 	@bash scripts/fuzz.sh $(FUZZ_SECONDS) build-fuzz $(JOBS)
 
 # The accuracy and cost study (docs/accuracy.md): CSV into bench/results/study, charts into docs/images.
+# Then the rigid method against the continuum reference on every scene (section 8; fem_SCENE.csv and
+# the printed tables in fem_SCENE.md).
+FEM_SCENES ?= beam chain plate bunny corpus
 study: build
-	@cmake --build $(BUILD) --target study study_float -j $(JOBS)
+	@cmake --build $(BUILD) --target study study_float fem_compare -j $(JOBS)
 	@$(BUILD)/bench/study --out bench/results/study --refs $(BUILD)/study-refs
 	@$(BUILD)/bench/study_float --out bench/results/study --refs $(BUILD)/study-refs
+	@for s in $(FEM_SCENES); do \
+	  $(BUILD)/bench/fem_compare --scene $$s --out bench/results/study > bench/results/study/fem_$$s.md || exit 1; \
+	done
 	@/usr/bin/python3 scripts/study_charts.py bench/results/study docs/images
 
 # Every mesh of the corpus (CGAL's data set, glmark2-data, assimp-testmodels) pre-scored with the

@@ -10,6 +10,8 @@
 #include "bench/fem_box_mesh.h"
 #include "bench/fem_checks.h"
 #include "bench/fem_contact.h"
+#include "bench/fem_interfaces.h"
+#include "bench/fem_scene.h"
 
 using namespace shatter;
 using namespace shatter::fem;
@@ -189,4 +191,64 @@ TEST(FemReference, BlockThrownAtAWallGainsNoEnergy) {
     EXPECT_GT(reach, 0.04);  // it hit the wall
     EXPECT_LT(worst, 1e-6 * e0);
     EXPECT_EQ(solid.unconverged_steps(), 0);
+}
+
+// Regular 1:8 refinement: every child has an eighth of its parent's volume (the 4 corner tets are
+// the parent halved; the octahedron's 4 have the same volume whichever diagonal cuts it), keeps
+// the parent's piece, and keeps the interface whole: the same area, tied by the old vertices and
+// the new edge midpoints.
+TEST(FemReference, RefinedTetsKeepVolumePiecesAndInterfaces) {
+    TetMesh mesh = box_tet_mesh(Vec3(0.02, 0.01, 0.01), 2, 1, 1);
+    std::vector<uint32_t> piece(mesh.tets.size());
+    for (size_t t = 0; t < mesh.tets.size(); ++t) piece[t] = t < 6 ? 0 : 1;  // the x < 0.01 cell is piece 0
+    const TetMesh before = mesh;
+    const std::vector<uint32_t> piece_before = piece;
+    refine_tets(mesh, piece);
+    ASSERT_EQ(mesh.tets.size(), 8 * before.tets.size());
+    const auto volume = [](const TetMesh& m, const Tet& t) {
+        return tet_volume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    };
+    for (size_t t = 0; t < before.tets.size(); ++t)
+        for (size_t c = 0; c < 8; ++c) {
+            EXPECT_NEAR(volume(mesh, mesh.tets[8 * t + c]), volume(before, before.tets[t]) / 8, 1e-21);
+            EXPECT_EQ(piece[8 * t + c], piece_before[t]);
+        }
+    // The 1 x 1 cm shared face: 2 x 2 vertices, 3 x 3 after one refinement.
+    const SplitMesh coarse = split_pieces(before, piece_before), fine = split_pieces(mesh, piece);
+    EXPECT_EQ(coarse.ties.size(), 4u);
+    EXPECT_EQ(fine.ties.size(), 9u);
+    double area = 0;
+    for (const Tie& t : fine.ties) area += t.area;
+    EXPECT_NEAR(area, 1e-4, 1e-15);
+}
+
+// A model of boxes (the plate's kind) meshed as Kuhn tets: cells lie in one box each, the boxes'
+// volumes add up, and the shared face is tied by (cells + 1)^2 ties over its area; the stiffness
+// length is the shortest box side.
+TEST(FemReference, BoxModelTets) {
+    Model model;
+    const auto box = [](Vec3 lo, Vec3 size) {
+        Piece p;
+        for (int c = 0; c < 8; ++c)
+            p.surface.vertices.push_back(lo + Vec3(c & 1 ? size.x() : 0, c & 2 ? size.y() : 0, c & 4 ? size.z() : 0));
+        return p;
+    };
+    model.pieces = {box(Vec3(0, 0, 0), Vec3(0.03, 0.03, 0.03)), box(Vec3(0.03, 0, 0), Vec3(0.06, 0.03, 0.03))};
+    EXPECT_DOUBLE_EQ(stiffness_length(model), 0.03);
+    TetMesh mesh;
+    std::vector<uint32_t> piece;
+    box_model_tets(model, 2, mesh, piece);
+    ASSERT_EQ(mesh.tets.size(), size_t(6 * (8 + 16)));
+    double v[2] = {0, 0};
+    for (size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& q = mesh.tets[t];
+        v[piece[t]] += tet_volume(mesh.vertices[q[0]], mesh.vertices[q[1]], mesh.vertices[q[2]], mesh.vertices[q[3]]);
+    }
+    EXPECT_NEAR(v[0], 2.7e-5, 1e-15);
+    EXPECT_NEAR(v[1], 5.4e-5, 1e-15);
+    const SplitMesh split = split_pieces(mesh, piece);
+    EXPECT_EQ(split.ties.size(), 9u);
+    double area = 0;
+    for (const Tie& t : split.ties) area += t.area;
+    EXPECT_NEAR(area, 9e-4, 1e-15);
 }

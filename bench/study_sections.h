@@ -54,6 +54,12 @@ struct Headlines {
     double chain_fem_break = NAN, chain_predicted_break = NAN, chain_rigid_break = NAN;
     double chain_middle_force_ratio = NAN;
     size_t chain_fem_joints = 0;  // joints whose ties all broke
+    // reference: the plate (assets/plate.toml) to its first break: the free fall's first contact
+    // with the sphere, the first tie's break on the continuum reference (2 cells across a cube, step
+    // plate_step), the same in the committed bench/results/study/fem_plate.csv's 2-cell row, the rigid method's
+    // first break as shipped (unit: s).
+    double plate_contact = NAN, plate_fem_break = NAN, plate_committed_break = NAN, plate_rigid_break = NAN;
+    double plate_step = NAN;
 };
 
 bool section_identities(const Options& opt, Headlines& h);

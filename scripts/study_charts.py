@@ -15,6 +15,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 
 RESULTS = sys.argv[1] if len(sys.argv) > 1 else "bench/results/study"
@@ -373,6 +374,73 @@ def smallest():
               f"({r['shipped_size']}; {num(r['shipped_cpu_per_sim_s']):.3g} s/s) | {num(r['shipped_worst_ratio']):.3g} |")
 
 
+def continuum():
+    """The rigid method at each alpha against the continuum reference (fem_compare's fem_SCENE.csv):
+    CPU seconds against the mean energy error, one panel per scene, the reference's own point at
+    the error axis's floor (its error is 0 by definition)."""
+    scenes = [s for s in ["beam", "chain", "plate", "bunny", "corpus"] if read(f"fem_{s}.csv")]
+    if not scenes:
+        return
+    fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.4), squeeze=False)
+    floor = 1e-3
+    for ax, scene in zip(axes[0], scenes):
+        rows = read(f"fem_{scene}.csv")
+        rigid = [r for r in rows if r["method"] == "rigid"]
+        ref = [r for r in rows if r["method"] != "rigid"]
+        xs = [num(r["cpu_s"]) for r in rigid]
+        ys = [max(num(r["energy_error"]), floor) for r in rigid]
+        ax.plot(xs, ys, "o", color="C0", ms=5, label="rigid, energized")
+        best = min(rigid, key=lambda r: num(r["energy_error"]))
+        for r, x, y in zip(rigid, xs, ys):
+            ax.annotate(f"{num(r['alpha']):g}", (x, y), fontsize=7, xytext=(3, 2), textcoords="offset points")
+            if r is best:
+                ax.plot([x], [y], "o", mfc="none", mec="r", ms=11, mew=1.5)
+        # The reference is the first non-rigid row; rows after it are coarser meshes, drawn at their
+        # error against it (the mesh's own error).
+        for i, r in enumerate(ref):
+            if i == 0:
+                ax.plot([num(r["cpu_s"])], [floor], "s", color="k", ms=7, label="reference (FEM; error 0)")
+            else:
+                y = max(num(r["energy_error"]), floor)
+                ax.plot([num(r["cpu_s"])], [y], "s", color="0.6", ms=6, label="reference, a coarser mesh")
+                ax.annotate(r["method"].split(";")[0].replace("fem ", ""), (num(r["cpu_s"]), y), fontsize=7,
+                            xytext=(3, 2), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        allx = xs + [num(r["cpu_s"]) for r in ref]
+        ax.set_xlim(min(allx) / 3, max(allx) * 3)
+        ax.set_ylim(floor / 2, max(ys + [1.0]) * 3)
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_title(scene)
+        ax.set_xlabel("CPU s per run")
+        ax.grid(alpha=0.3, which="both", lw=0.4)
+    axes[0][0].set_ylabel("mean energy error against the reference")
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, bbox_to_anchor=(0.5, -0.1))
+    fig.suptitle("The rigid method against the continuum reference: cost and error per alpha (red ring: best alpha)",
+                 fontsize=10)
+    save(fig, "study-continuum.png")
+    print("\n| scene | best alpha | its energy error | alpha 0 (plain) | alpha 1 | first break, rigid - reference (ms) "
+          "| rigid CPU (s) | reference CPU (s) | cost ratio |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for scene in scenes:
+        rows = read(f"fem_{scene}.csv")
+        rigid = [r for r in rows if r["method"] == "rigid"]
+        ref = [r for r in rows if r["method"] != "rigid"][0]
+        best = min(rigid, key=lambda r: num(r["energy_error"]))
+        at = {num(r["alpha"]): r for r in rigid}
+        cpus = [num(r["cpu_s"]) for r in rigid]
+        dt = [1e3 * (num(r["first_break_s"]) - num(ref["first_break_s"])) for r in rigid]
+        print(f"| {scene} | {num(best['alpha']):g} | {num(best['energy_error']):.3g} | "
+              f"{num(at[0.0]['energy_error']):.3g} | {num(at[1.0]['energy_error']):.3g} | "
+              f"{min(dt):+.2f} to {max(dt):+.2f} | {min(cpus):.2f} to {max(cpus):.2f} | {num(ref['cpu_s']):.0f} | "
+              f"{num(ref['cpu_s']) / max(cpus):.0f} to {num(ref['cpu_s']) / min(cpus):.0f} |")
+
+
 if __name__ == "__main__":
     cost_error()
     first_break()
@@ -381,3 +449,4 @@ if __name__ == "__main__":
     methods()
     tables()
     smallest()
+    continuum()
