@@ -109,20 +109,6 @@ FemSceneSettings scene_settings(const Model& model, const MaterialSettings& mate
 
 namespace {
 
-// Where the model frame's origin goes (simulate/bullet_world.cpp's object_translation).
-Vec3 object_translation(const Model& model, const ObjectSettings& object) {
-    if (object.place == Placement::Origin) return object.pose.position;
-    const Mat3 r = rotation_matrix(object.pose.rotation_deg);
-    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-    for (const Piece& p : model.pieces)
-        for (const Vec3& v : p.surface.vertices) {
-            const Vec3 x = r * v;
-            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-        }
-    if (!(lo.x() <= hi.x())) return object.pose.position;
-    return object.pose.position - Vec3(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));
-}
-
 // How far a point may fall along the unit direction `down` before it touches the scene's ground
 // or a sphere (infinite when it never does).
 double fall_to_contact(const Vec3& x, const Vec3& down, const ContactSettings& cs) {

@@ -1,4 +1,4 @@
-// Scene, object, material and simulate settings: the rotation and kinematic-motion helpers, the
+// Scene, object, material and simulate settings: the rotation, placement and kinematic-motion helpers, the
 // canonical JSON written into the trajectory's settings, and its exact inverse for the scene,
 // both by the setting tables (core/setting_table_scene.cpp, with the tables of the arrays'
 // entries). The JSON uses the shot file's key names (docs/shot.md), so a reader can compare the two.
@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/model.h"
 #include "core/setting_table.h"
 
 namespace shatter {
@@ -19,6 +20,19 @@ Mat3 rotation_matrix(const Vec3& rotation_deg) {
     const Mat3 ry = Eigen::AngleAxisd(r.y(), Vec3::UnitY()).toRotationMatrix();
     const Mat3 rz = Eigen::AngleAxisd(r.z(), Vec3::UnitZ()).toRotationMatrix();
     return rz * ry * rx;  // X first, then Y, then Z
+}
+
+Vec3 object_translation(const Model& model, const ObjectSettings& object) {
+    if (object.place == Placement::Origin) return object.pose.position;
+    const Mat3 r = rotation_matrix(object.pose.rotation_deg);
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Piece& p : model.pieces)
+        for (const Vec3& v : p.surface.vertices) {
+            const Vec3 x = r * v;
+            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+        }
+    if (!(lo.x() <= hi.x())) return object.pose.position;
+    return object.pose.position - Vec3(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));
 }
 
 namespace {

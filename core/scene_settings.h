@@ -95,6 +95,11 @@ struct ObjectSettings {
     Vec3 angular_velocity = Vec3::Zero();  // initial angular velocity about the object's centre of mass (unit: rad/s)
     std::vector<PieceDriveSettings> driven;  // [[object.driven]]
 };
+
+struct Model;
+// Where the model frame's origin goes: the object's position, or (place = "base") the position
+// less the centre of the bottom of the rotated model's bounding box (its pieces' surfaces).
+Vec3 object_translation(const Model& model, const ObjectSettings& object);
 // The offset of a driven piece from its start position at time t (unit: m).
 Vec3 drive_offset(const PieceDriveSettings& d, double t);
 

@@ -233,21 +233,6 @@ constexpr double kContactPatch = 0.25;
 // piece's radius.
 constexpr double kRollingResistance = 0.01;
 
-// Where the model frame's origin goes: the object's position, or (place = "base") the position
-// less the centre of the bottom of the rotated model's bounding box.
-static Vec3 object_translation(const Model& model, const ObjectSettings& object) {
-    if (object.place == Placement::Origin) return object.pose.position;
-    const Mat3 r = rotation_matrix(object.pose.rotation_deg);
-    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-    for (const Piece& p : model.pieces)
-        for (const Vec3& v : p.surface.vertices) {
-            const Vec3 x = r * v;
-            lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-        }
-    if (!(lo.x() <= hi.x())) return object.pose.position;
-    return object.pose.position - Vec3(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));
-}
-
 void BulletWorld::build_pieces(const Model& model) {
     Impl& m = *impl_;
     const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
