@@ -350,8 +350,8 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
         if (direct_ && direct_system_->ok) solve_joints_directly();  // the joints last
         return r;
     }
-    // Bullet's loop (split-impulse pass, then `own` iterations: Bullet's residual threshold is 0,
-    // so it never stops early), then more until the joints converge.
+    // Bullet's loop (split-impulse pass, then `own` iterations, here without Bullet's early stop
+    // at its residual threshold), then more until the joints converge.
     solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifolds, numManifolds, constraints, numConstraints,
                                                   info, debugDrawer);
     const btScalar inv_h = btScalar(1) / info.m_timeStep;
