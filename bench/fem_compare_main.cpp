@@ -19,8 +19,13 @@
 //   length it stands for (the plate's cube side; a prescored model's mean tet edge) unless
 //   --young is given; Poisson's ratio 0.2 (--poisson). Writes fem_SCENE.csv into --out.
 //
+// --check: no reference run; the rigid rows only, scored against the committed comparison
+//   (bench/results/study/fem_SCENE.csv and .md): exits 1 unless the best-matching alpha is the
+//   committed one and its error within 10% of it (ctest Continuum.BestAlpha.*).
+//
 //   fem_compare [--scene beam|chain|plate|bunny|corpus] [--cells N] [--refine N] [--step H]
 //               [--step-after H2] [--after S] [--young E] [--poisson NU] [--set KEY=VALUE] [--out DIR]
+//               [--check]
 //   (beam: 4 cells across, h = 2e-4 s; chain: 2 cells across, h = 2.5e-6 s, h2 = 2.5e-5 s, 0.5 s:
 //   at h = 1e-5 s one end joint lets go, at 5e-6 s and 2.5e-6 s both, docs/accuracy.md section 8.2;
 //   plate: 3 cells, h = 1e-5 s, h2 = 1e-4 s; bunny and corpus: h = h2 = 1e-4 s)
@@ -29,8 +34,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -169,6 +176,80 @@ Row reference_row(const std::string& method, double first_break, size_t broken, 
     return r;
 }
 
+// The mean over the four energies of |E - E_ref| / (E_ref + floor).
+double energy_error(const Row& r, const Row& ref, double floor) {
+    const auto rel = [&](double x, double e) { return std::abs(x - e) / (e + floor); };
+    return (rel(r.ke01, ref.ke01) + rel(r.ke05, ref.ke05) + rel(r.sp01, ref.sp01) + rel(r.sp05, ref.sp05)) / 4;
+}
+
+// --check: the committed comparison of a scene (bench/results/study/fem_SCENE.csv and .md, made by
+// `make study`) read back: its reference's energies, the error's floor, the reference's start
+// (dropped scenes), and the best-matching alpha and error of its rigid rows. The rigid rows are
+// then run again (seconds) and scored against the committed reference, which is not (minutes).
+struct Committed {
+    Row reference;
+    double floor = 0, start = 0, best_alpha = NAN, best_error = NAN;
+};
+
+Committed read_committed(const std::string& scene) {
+    const std::string base = std::string(SHATTER_SOURCE_DIR) + "/bench/results/study/fem_" + scene;
+    Committed c;
+    std::ifstream csv(base + ".csv");
+    std::string line;
+    std::getline(csv, line);
+    std::vector<std::string> header;
+    for (std::stringstream h(line); std::getline(h, line, ',');) header.push_back(line);
+    const auto column = [&](const std::string& name) {
+        return size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    bool have_reference = false;
+    for (std::string row; std::getline(csv, row);) {
+        std::vector<std::string> f;
+        for (std::stringstream cells(row); std::getline(cells, line, ',');) f.push_back(line);
+        if (f.size() < header.size()) continue;
+        const auto num = [&](const std::string& name) { return std::atof(f[column(name)].c_str()); };
+        const std::string late = column("kinetic_05_J") < header.size() ? "05" : "after";
+        if (f[0] == "rigid") {
+            const double err = num("energy_error");
+            if (!(err >= c.best_error)) c.best_error = err, c.best_alpha = num("alpha");
+        } else if (!have_reference && f[0].rfind("fem", 0) == 0) {
+            have_reference = true;
+            c.reference.ke01 = num("kinetic_01_J");
+            c.reference.ke05 = num("kinetic_" + late + "_J");
+            c.reference.sp01 = num("spread_01_J");
+            c.reference.sp05 = num("spread_" + late + "_J");
+        }
+    }
+    std::ifstream md(base + ".md");
+    for (std::string l; std::getline(md, l);) {
+        if (const size_t at = l.find("run from "); l.rfind("reference:", 0) == 0 && at != std::string::npos)
+            c.start = std::atof(l.c_str() + at + 9);
+        if (const size_t at = l.find("(E_ref + "); l.rfind("best-matching", 0) == 0 && at != std::string::npos)
+            c.floor = std::atof(l.c_str() + at + 9);
+    }
+    if (!have_reference || std::isnan(c.best_alpha)) {
+        std::fprintf(stderr, "fem_compare: %s.csv has no reference or no rigid row (fix: make study)\n", base.c_str());
+        std::exit(2);
+    }
+    return c;
+}
+
+// The rigid rows run again against the committed reference: the same best-matching alpha, and
+// its error within 10% of the committed one. Prints both; 0 when they agree, 1 when not.
+int check_rows(const std::string& scene, const std::vector<Row>& rows, const Committed& c) {
+    double best = 1e300, best_alpha = NAN;
+    for (const Row& r : rows) {
+        const double err = energy_error(r, c.reference, c.floor);
+        std::printf("%s rigid alpha %g: first break %.5f s, %zu breaks, %zu fragments, energy error %.4g\n", scene.c_str(),
+                    r.alpha, r.first_break, r.broken, r.fragments, err);
+        if (err < best) best = err, best_alpha = r.alpha;
+    }
+    const bool same = best_alpha == c.best_alpha && std::abs(best - c.best_error) <= 0.1 * c.best_error;
+    std::printf("%s %s: best-matching alpha %g (error %.4g); committed %g (%.4g)\n", same ? "ok  " : "FAIL", scene.c_str(),
+                best_alpha, best, c.best_alpha, c.best_error);
+    return same ? 0 : 1;
+}
+
 // Prints the markdown table and writes the CSV of the rigid rows and the reference (the last
 // row), then of `coarser` references (their error against the reference: the mesh's own);
 // returns the best-matching alpha and its error.
@@ -189,10 +270,9 @@ std::pair<double, double> report(std::vector<Row> rows, const Table& t, const st
                       t.after);
     rule += " --- | --- | --- | --- | --- | --- | --- |";
     std::printf("%s\n%s\n", md.c_str(), rule.c_str());
-    const auto relf = [&](double x, double r) { return std::abs(x - r) / (r + t.floor); };
     double best = 1e300, best_alpha = NAN;
     for (const Row& r : rows) {
-        const double err = (relf(r.ke01, ref.ke01) + relf(r.ke05, ref.ke05) + relf(r.sp01, ref.sp01) + relf(r.sp05, ref.sp05)) / 4;
+        const double err = energy_error(r, ref, t.floor);
         if (r.method == "rigid" && err < best) best = err, best_alpha = r.alpha;
         const std::string alpha = std::isnan(r.alpha) ? "-" : fmt::format("{:g}", r.alpha);
         std::string line = fmt::format("| {} | {} | {:.{}f} | {} of {} |", r.method, alpha, r.first_break, t.break_digits,
@@ -218,12 +298,13 @@ std::pair<double, double> report(std::vector<Row> rows, const Table& t, const st
     return {best_alpha, best};
 }
 
-int compare_beam(uint32_t cells, double h, const std::string& out) {
+int compare_beam(uint32_t cells, double h, const std::string& out, bool check) {
     Table t;
     t.csv_name = "fem_beam.csv";
     StudyCase c = beam_case();
     c.input.simulate.duration = 0.9;
     std::vector<Row> rows = rigid_rows(c, 0.5, 0, uint32_t(c.model.pieces.size()) - 1, t);
+    if (check) return check_rows("beam", rows, read_committed("beam"));
     const std::clock_t c0 = std::clock();
     const fem::FemBeamResult f = fem::run_fem_beam(cells, h);
     rows.push_back(reference_row(fmt::format("fem {} cells, h {:g}", cells, h), f.first_break, f.broken, f.ties, f.fragments,
@@ -238,7 +319,7 @@ int compare_beam(uint32_t cells, double h, const std::string& out) {
 }
 
 int compare_chain(uint32_t cells, double h, double h_after, double after, const std::vector<std::string>& sets,
-                  const std::string& out) {
+                  const std::string& out, bool check) {
     Table t;
     t.csv_name = "fem_chain.csv";
     t.break_digits = 5;
@@ -259,6 +340,11 @@ int compare_chain(uint32_t cells, double h, double h_after, double after, const 
     for (size_t p = 1; p + 1 < model.pieces.size(); ++p) links_mass += model.pieces[p].mass.mass;
     t.floor = 0.5 * links_mass * std::pow(0.03 / 2.7, 2);
     std::vector<Row> rows = rigid_rows(c, after, 1, uint32_t(model.pieces.size()) - 2, t);
+    if (check) {
+        Committed committed = read_committed("chain");
+        committed.floor = t.floor;
+        return check_rows("chain", rows, committed);
+    }
     const std::clock_t c0 = std::clock();
     const fem::FemChainResult f = fem::run_fem_chain(cells, h, h_after, after);
     Row ref = reference_row(fmt::format("fem {} cells, h {:g} / {:g}", cells, h, h_after), f.first_break, f.broken, f.ties,
@@ -286,6 +372,7 @@ struct SceneArgs {
     uint32_t cells = 3, refine = 0;
     double h = 0, h_after = 0, after = 0.5, young = 0, poisson = 0.2;
     std::vector<std::string> sets;
+    bool check = false;
 };
 
 // A dropped object (plate, bunny, corpus) against bench/fem_scene.h.
@@ -319,6 +406,13 @@ int compare_dropped(const std::string& scene, const SceneArgs& a, const std::str
                  "rho %g, strength %.4g Pa\n",
                  scene.c_str(), model.pieces.size(), model.mesh.tets.size(), model.constraints.size(), fs.material.young,
                  shot.material.stiffness, l, fs.material.poisson, fs.material.density, fs.strength.tensile);
+    if (a.check) {
+        const Committed committed = read_committed(scene);
+        Table t;
+        c.input.simulate.auto_duration = false;
+        c.input.simulate.duration = committed.start + 0.3 + a.after;
+        return check_rows(scene, rigid_rows(c, a.after, 0, uint32_t(model.pieces.size()) - 1, t), committed);
+    }
     const auto run = [&](const fem::FemSceneSettings& settings, const std::string& what, fem::FemSceneResult& f) {
         const std::clock_t c0 = std::clock();
         f = fem::run_fem_scene(model, shot.scene, shot.object, settings);
@@ -375,6 +469,9 @@ int main(int argc, char** argv) {
     SceneArgs a;
     uint32_t cells = 0;
     std::string out = "bench/results/study", scene = "beam";
+    bool check = false;
+    for (int i = 1; i < argc; ++i)
+        if (std::string(argv[i]) == "--check") check = a.check = true;
     for (int i = 1; i + 1 < argc; ++i) {
         const std::string k = argv[i];
         if (k == "--cells") cells = uint32_t(std::atoi(argv[++i]));
@@ -388,10 +485,10 @@ int main(int argc, char** argv) {
         else if (k == "--set") a.sets.push_back(argv[++i]);
         else if (k == "--out") out = argv[++i];
     }
-    if (scene == "beam") return compare_beam(cells ? cells : 4, a.h > 0 ? a.h : 2e-4, out);
+    if (scene == "beam") return compare_beam(cells ? cells : 4, a.h > 0 ? a.h : 2e-4, out, check);
     if (scene == "chain")
         return compare_chain(cells ? cells : 2, a.h > 0 ? a.h : 2.5e-6, a.h_after > 0 ? a.h_after : 2.5e-5, a.after, a.sets,
-                             out);
+                             out, check);
     if (scene == "plate" || scene == "bunny" || scene == "corpus") {
         if (cells) a.cells = cells;
         return compare_dropped(scene, a, out);
