@@ -49,6 +49,17 @@ def save(fig, name):
     print(f"wrote {os.path.join(IMAGES, name)}", file=sys.stderr)
 
 
+def row_legend(axes):
+    """The handles and labels of the first row of axes, each label once, in order of appearance."""
+    handles, labels = [], []
+    for ax in axes[0]:
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(h)
+                labels.append(label)
+    return handles, labels
+
+
 def knee(points):
     """The cheapest point whose error is within 2x of the smallest error on the curve."""
     ok = [p for p in points if math.isfinite(p[1]) and p[1] >= 0]
@@ -113,12 +124,7 @@ def cost_error():
         ax.set_xlabel("wall s per simulated s")
         ax.grid(alpha=0.3, which="both", lw=0.4)
     axes[0][0].set_ylabel("mean trajectory error (mm)")
-    handles, labels = [], []
-    for ax in axes[0]:
-        for h, l in zip(*ax.get_legend_handles_labels()):
-            if l not in labels:
-                handles.append(h)
-                labels.append(l)
+    handles, labels = row_legend(axes)
     if not labels:
         return
     fig.legend(handles, labels, loc="lower center", ncol=min(8, len(labels)), fontsize=8, bbox_to_anchor=(0.5, -0.14))
@@ -336,12 +342,7 @@ def smallest():
         ax.set_xlabel("CPU s per simulated s")
         ax.grid(alpha=0.3, which="both", lw=0.4)
     axes[0][0].set_ylabel("deviation from finest / tolerance")
-    handles, labels = [], []
-    for ax in axes[0]:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(h)
-                labels.append(lab)
+    handles, labels = row_legend(axes)
     fig.legend(handles, labels, loc="lower center", ncol=min(8, len(labels)), fontsize=8, bbox_to_anchor=(0.5, -0.12))
     fig.suptitle("The smallest model that serves: one knob at a time down from the finest (dotted: tolerance; "
                  "dashed: the finest model's cost)", fontsize=10)
@@ -415,12 +416,7 @@ def continuum():
         ax.set_xlabel("CPU s per run")
         ax.grid(alpha=0.3, which="both", lw=0.4)
     axes[0][0].set_ylabel("mean energy error against the reference")
-    handles, labels = [], []
-    for ax in axes[0]:
-        for h, l in zip(*ax.get_legend_handles_labels()):
-            if l not in labels:
-                handles.append(h)
-                labels.append(l)
+    handles, labels = row_legend(axes)
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, bbox_to_anchor=(0.5, -0.1))
     fig.suptitle("The rigid method against the continuum reference: cost and error per alpha (red ring: best alpha)",
                  fontsize=10)
