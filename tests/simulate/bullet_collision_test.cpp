@@ -9,11 +9,11 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "simulate/bullet_collision.h"
+#include "support/bullet_twins.h"
 
 namespace shatter {
 namespace {
@@ -28,7 +28,7 @@ struct Rig {
     std::unique_ptr<PieceWorld> world;
     btStaticPlaneShape ground_shape{btVector3(0, 1, 0), 0};
     std::vector<std::unique_ptr<btConvexHullShape>> shapes;
-    std::vector<std::unique_ptr<btRigidBody>> bodies;
+    testing_support::Bodies bodies;
     std::vector<std::unique_ptr<btPoint2PointConstraint>> joints;
 
     explicit Rig(bool skip) {
@@ -62,14 +62,7 @@ struct Rig {
         }
     }
     btRigidBody* add(double mass, btCollisionShape* shape, const btTransform& t) {
-        btVector3 inertia(0, 0, 0);
-        if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-        btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-        info.m_startWorldTransform = t;
-        info.m_friction = 0.5;
-        bodies.push_back(std::make_unique<btRigidBody>(info));
-        world->addRigidBody(bodies.back().get());
-        return bodies.back().get();
+        return testing_support::add_body(*world, bodies, mass, shape, t);
     }
     ~Rig() {
         for (auto& j : joints)
@@ -78,13 +71,6 @@ struct Rig {
     }
 };
 
-// x, y and z bit for bit (a btVector3's fourth lane is padding).
-bool same_bytes(const btVector3& a, const btVector3& b) { return std::memcmp(a.m_floats, b.m_floats, 3 * sizeof(btScalar)) == 0; }
-bool same_bytes(const btTransform& a, const btTransform& b) {
-    for (int r = 0; r < 3; ++r)
-        if (!same_bytes(a.getBasis()[r], b.getBasis()[r])) return false;
-    return same_bytes(a.getOrigin(), b.getOrigin());
-}
 
 TEST(PieceConvexAlgorithm, FindsTheSameContactsAsBulletsOwn) {
     Rig bullet(false), ours(true);
@@ -107,13 +93,7 @@ TEST(PieceConvexAlgorithm, FindsTheSameContactsAsBulletsOwn) {
                                 a->getBody1()->getCollisionShape()->getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE;
             if (pieces) ++(a->getNumContacts() ? touching : apart);
         }
-        for (size_t i = 0; i < bullet.bodies.size(); ++i) {
-            const btRigidBody& a = *bullet.bodies[i];
-            const btRigidBody& b = *ours.bodies[i];
-            ASSERT_TRUE(same_bytes(a.getWorldTransform(), b.getWorldTransform())) << "body " << i << " step " << step;
-            ASSERT_TRUE(same_bytes(a.getLinearVelocity(), b.getLinearVelocity())) << "body " << i << " step " << step;
-            ASSERT_TRUE(same_bytes(a.getAngularVelocity(), b.getAngularVelocity())) << "body " << i << " step " << step;
-        }
+        ASSERT_TRUE(testing_support::same_bodies(bullet.bodies, ours.bodies)) << "step " << step;
     }
     // The heap did what it is for: hulls near one another without touching (the pairs whose GJK
     // the algorithm may skip) and hulls in contact.

@@ -5,12 +5,12 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include "simulate/bullet_solver.h"
 #include "simulate/compliant_constraint.h"
+#include "support/bullet_twins.h"
 
 namespace shatter {
 namespace {
@@ -26,7 +26,7 @@ struct Rig {
     std::unique_ptr<btDiscreteDynamicsWorld> world;
     btStaticPlaneShape ground_shape{btVector3(0, 1, 0), 0};
     btBoxShape box_shape{btVector3(0.02, 0.02, 0.02)};
-    std::vector<std::unique_ptr<btRigidBody>> bodies;
+    testing_support::Bodies bodies;
     std::vector<std::unique_ptr<CompliantPointConstraint>> joints;
 
     explicit Rig(std::unique_ptr<btSequentialImpulseConstraintSolver> s) : solver(std::move(s)) {
@@ -51,14 +51,7 @@ struct Rig {
         }
     }
     btRigidBody* add(double mass, btCollisionShape* shape, const btTransform& t) {
-        btVector3 inertia(0, 0, 0);
-        if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-        btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-        info.m_startWorldTransform = t;
-        info.m_friction = 0.5;
-        bodies.push_back(std::make_unique<btRigidBody>(info));
-        world->addRigidBody(bodies.back().get());
-        return bodies.back().get();
+        return testing_support::add_body(*world, bodies, mass, shape, t);
     }
     ~Rig() {
         for (auto& j : joints) world->removeConstraint(j.get());
@@ -66,13 +59,8 @@ struct Rig {
     }
 };
 
-// x, y and z bit for bit (a btVector3's fourth lane is padding).
-bool same_bytes(const btVector3& a, const btVector3& b) { return std::memcmp(a.m_floats, b.m_floats, 3 * sizeof(btScalar)) == 0; }
-bool same_bytes(const btTransform& a, const btTransform& b) {
-    for (int r = 0; r < 3; ++r)
-        if (!same_bytes(a.getBasis()[r], b.getBasis()[r])) return false;
-    return same_bytes(a.getOrigin(), b.getOrigin());
-}
+using testing_support::same_bytes;
+
 bool same_bytes(const btJointFeedback& a, const btJointFeedback& b) {
     return same_bytes(a.m_appliedForceBodyA, b.m_appliedForceBodyA) &&
            same_bytes(a.m_appliedTorqueBodyA, b.m_appliedTorqueBodyA) &&
@@ -88,13 +76,7 @@ TEST(PieceSolver, StepsToTheSameBytesAsBulletsOwnSolver) {
         bullet.world->stepSimulation(1.0 / 480, 0, 1.0 / 480);
         ours.world->stepSimulation(1.0 / 480, 0, 1.0 / 480);
         contacts += bullet.dispatcher.getNumManifolds() > 0;
-        for (size_t i = 0; i < bullet.bodies.size(); ++i) {
-            const btRigidBody& a = *bullet.bodies[i];
-            const btRigidBody& b = *ours.bodies[i];
-            ASSERT_TRUE(same_bytes(a.getWorldTransform(), b.getWorldTransform())) << "body " << i << " step " << step;
-            ASSERT_TRUE(same_bytes(a.getLinearVelocity(), b.getLinearVelocity())) << "body " << i << " step " << step;
-            ASSERT_TRUE(same_bytes(a.getAngularVelocity(), b.getAngularVelocity())) << "body " << i << " step " << step;
-        }
+        ASSERT_TRUE(testing_support::same_bodies(bullet.bodies, ours.bodies)) << "step " << step;
         for (size_t j = 0; j < bullet.joints.size(); ++j) {
             const btJointFeedback& a = bullet.joints[j]->feedback();
             const btJointFeedback& b = ours.joints[j]->feedback();
