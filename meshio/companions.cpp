@@ -4,8 +4,9 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <string_view>
+
+#include "meshio/mesh_load.h"
 
 namespace shatter {
 
@@ -18,13 +19,7 @@ std::string lower(std::string s) {
     return s;
 }
 
-std::string read_lower(const fs::path& path, size_t limit) {
-    std::ifstream in(path, std::ios::binary);
-    std::string text(limit, '\0');
-    in.read(text.data(), std::streamsize(limit));
-    text.resize(size_t(in.gcount()));
-    return lower(std::move(text));
-}
+std::string read_lower(const fs::path& path, size_t limit) { return lower(read_file_head(path.string(), limit)); }
 
 bool companion_extension(const std::string& ext) {
     static constexpr std::array<std::string_view, 20> kExtensions = {

@@ -155,15 +155,6 @@ void check_path(const std::string& path) {
     }
 }
 
-// The first 64 kB of the file (what a PLY header may take).
-std::string read_file_head(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string head(64 * 1024, '\0');
-    in.read(head.data(), std::streamsize(head.size()));
-    head.resize(size_t(in.gcount()));
-    return head;
-}
-
 void check_scale(const std::string& path, double scale) {
     if (!std::isfinite(scale) || scale <= 0) {
         std::ostringstream s;
@@ -316,7 +307,8 @@ LoadedMesh import_isolated(const std::string& path, const std::string& format_fi
 LoadedMesh load_mesh_file(const std::string& path) {
     check_path(path);
     // assimp crashes on some malformed PLY headers (meshio/ply_header.h): check them first.
-    if (const std::string head = read_file_head(path); looks_like_ply(head)) check_ply_header(head, path);
+    // The first 64 kB: what a PLY header may take.
+    if (const std::string head = read_file_head(path, 64 * 1024); looks_like_ply(head)) check_ply_header(head, path);
 
     const std::string format_fix =
         "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
@@ -329,6 +321,14 @@ TriangleMesh load_mesh(const std::string& path, double scale) {
     TriangleMesh mesh = load_mesh_file(path).mesh;
     for (Vec3& v : mesh.vertices) v *= scale;
     return mesh;
+}
+
+std::string read_file_head(const std::string& path, size_t bytes) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(bytes, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    return head;
 }
 
 }  // namespace shatter

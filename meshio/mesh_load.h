@@ -20,6 +20,7 @@
 // the file, the problem with its value, and a fix.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "core/geometry.h"
@@ -44,5 +45,8 @@ TriangleMesh load_mesh(const std::string& path, double scale);
 // How long an import of `path` in a child process may take (unit: s): 15 s plus 10 s per MB, or
 // SHATTER_MESH_IMPORT_TIMEOUT when set (mesh_load.cpp says why).
 double mesh_import_deadline_seconds(const std::string& path);
+
+// The first `bytes` of a file (fewer if it is shorter; empty if it cannot be read).
+std::string read_file_head(const std::string& path, size_t bytes);
 
 }  // namespace shatter
