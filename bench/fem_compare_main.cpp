@@ -202,13 +202,13 @@ Committed read_committed(const std::string& scene) {
     const auto column = [&](const std::string& name) {
         return size_t(std::find(header.begin(), header.end(), name) - header.begin());
     };
+    const std::string late = column("kinetic_05_J") < header.size() ? "05" : "after";  // the chain's: "after"
     bool have_reference = false;
     for (std::string row; std::getline(csv, row);) {
         std::vector<std::string> f;
         for (std::stringstream cells(row); std::getline(cells, line, ',');) f.push_back(line);
         if (f.size() < header.size()) continue;
         const auto num = [&](const std::string& name) { return std::atof(f[column(name)].c_str()); };
-        const std::string late = column("kinetic_05_J") < header.size() ? "05" : "after";
         if (f[0] == "rigid") {
             const double err = num("energy_error");
             if (!(err >= c.best_error)) c.best_error = err, c.best_alpha = num("alpha");
