@@ -5,7 +5,8 @@
 // Arguments (optional): a scene name to run only that scene (bunny, bunny1000, plate10, plate32,
 // plate100),
 // then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
-// then the joint solve ("iterative", as shipped, or "direct"; [simulate] joints).
+// then the joint solve ("iterative", as shipped, or "direct"; [simulate] joints), then what the kicks
+// move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped).
 // Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
 // constraints runs at >= 60 steps per second.
 #include <chrono>
@@ -25,10 +26,12 @@ namespace {
 
 uint32_t g_iterations = 20;                    // the shipped default ([simulate] iterations)
 JointSolve g_joints = JointSolve::Iterative;  // the shipped default ([simulate] joints)
+KickBodiesMode g_kick_bodies = SimulateSettings{}.kick_bodies;  // the shipped default ([simulate] kick_bodies)
 
 void run(const char* name, const Model& model, SimulationInput in, double alpha) {
     in.material.alpha = alpha;
     in.simulate.joints = g_joints;
+    in.simulate.kick_bodies = g_kick_bodies;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     const SimulationResult r = simulate(model, in, "bench");
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
     if (argc > 4) g_joints = std::string(argv[4]) == "direct" ? JointSolve::Direct : JointSolve::Iterative;
+    if (argc > 5) g_kick_bodies = std::string(argv[5]) == "joined" ? KickBodiesMode::Joined : KickBodiesMode::Pieces;
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
                 "energize_percent\n");

@@ -97,10 +97,12 @@ double trajectory_rms(const Model& run_model, const Trajectory& run, const Model
 
 double first_break(const SimulationResult& r);  // (unit: s), NaN when nothing broke
 size_t fragments(const Model& model, const SimulationResult& r);
-// Max over breaks of |injected - intended| / intended, intended = alpha E (split "total") or the
+// Max over breaks of |injected - intended| / intended, intended = what the break gives back
+// (given_back: alpha E with split "total", plus held energy released, less energy held) or the
 // sum of the per-body shares; 0 when nothing broke or alpha = 0.
 double energy_identity_error(const SimulationResult& r, bool per_body);
-// (sum injected - alpha sum E) / (alpha sum E): how far the whole run's books are off alpha E.
+// (sum injected + energy still held - alpha sum E) / (alpha sum E): how far the whole run's books
+// are off alpha E.
 double energy_books_error(const SimulationResult& r);
 // The stiffness rig's measured stiffness over the intended one, minus 1.
 double stiffness_identity_error(const StudyCase& c, const SimulationResult& r);

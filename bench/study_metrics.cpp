@@ -139,7 +139,7 @@ size_t fragments(const Model& model, const SimulationResult& r) { return count_f
 double energy_identity_error(const SimulationResult& r, bool per_body) {
     double worst = 0;
     for (const BreakRecord& b : r.breaks) {
-        double intended = b.alpha * b.kicks.stored_energy;
+        double intended = given_back(b);
         if (per_body) intended = b.kicks.kick[0].energy + b.kicks.kick[1].energy;
         if (!(intended > 0)) continue;
         worst = std::max(worst, std::abs(b.injected_energy - intended) / intended);
@@ -151,7 +151,7 @@ double energy_books_error(const SimulationResult& r) {
     double stored = 0, injected = 0, alpha = 0;
     for (const BreakRecord& b : r.breaks) {
         stored += b.kicks.stored_energy;
-        injected += b.injected_energy;
+        injected += b.injected_energy + b.held_energy - b.released_energy;  // held energy counts as given
         alpha = b.alpha;
     }
     if (!(alpha * stored > 0)) return 0;

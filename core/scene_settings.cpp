@@ -106,6 +106,7 @@ void apply_energize_method(EnergizeMethod m, SimulateSettings& s) {
     s.energy_split = paper ? EnergySplitMode::PerBody : EnergySplitMode::Total;
     s.directions = paper ? KickDirectionMode::Paper : KickDirectionMode::Opposed;
     s.exact_energy = !paper;
+    s.kick_bodies = paper ? KickBodiesMode::Pieces : KickBodiesMode::Joined;
 }
 
 const char* to_string(BreakCriterion c) {

@@ -134,11 +134,16 @@ inline constexpr Limits kRestitutionLimits{0, 1, ""};
 
 enum class EnergySplitMode { Total, PerBody };
 enum class KickDirectionMode { Paper, Opposed, Force };
-// The energizing method: a name for the three keys energy_split, directions and exact_energy
-// (docs/physics.md section 4). "exact" (the default): the pair gains exactly alpha E in its own
-// frame, equal and opposite kicks, body a's along the paper's direction (momentum conserved;
-// directions = "opposed"); "paper": the
-// paper as written, alpha E per body with its magnitudes and its directions -(t x f).
+// What a break's kicks move: "pieces": the constraint's two pieces, as free bodies; "joined": the
+// two pieces with everything still joined to them, as the joints allow
+// (simulate/joined_response.h).
+enum class KickBodiesMode { Pieces, Joined };
+// The energizing method: a name for the four keys energy_split, directions, exact_energy and
+// kick_bodies (docs/physics.md section 4). "exact" (the default): the pair gains exactly alpha E
+// in its own frame, equal and opposite kicks, body a's along the paper's direction (momentum
+// conserved; directions = "opposed"), passed through the joints (kick_bodies = "joined");
+// "paper": the paper as written, alpha E per body with its magnitudes and its directions
+// -(t x f), on the two pieces.
 enum class EnergizeMethod { Exact, Paper };
 // When a constraint is overloaded: "force": the norm of its force exceeds strength x area
 // (docs/physics.md section 3); "bullet_impulse": Bullet's own per-row test, any world-axis row's
@@ -168,11 +173,12 @@ struct SimulateSettings {
     bool auto_substeps = false;
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     JointSolve joints = JointSolve::Iterative;  // "iterative" or "direct" (simulate/bullet_solver.h)
-    EnergizeMethod method = EnergizeMethod::Exact;  // sets the next three (apply_energize_method)
+    EnergizeMethod method = EnergizeMethod::Exact;  // sets the next three and kick_bodies (apply_energize_method)
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
     // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, never
     // into the partner (momentum-conserving)
     KickDirectionMode directions = KickDirectionMode::Opposed;
+    KickBodiesMode kick_bodies = KickBodiesMode::Joined;  // "pieces" or "joined"
     double rate_limit = 0;      // least time between two breaks of the object; 0: off (unit: s)
     bool rollback = false;      // re-run a step whose breaks were found, without the broken constraints
     bool exact_energy = true;   // impulse magnitudes solved for the bodies' motion: the gained kinetic energy is exactly alpha E
@@ -181,7 +187,7 @@ struct SimulateSettings {
     BreakCriterion break_criterion = BreakCriterion::Force;  // "force" (norm) or "bullet_impulse" (per row)
     InstabilityMode on_instability = InstabilityMode::Stop;  // "stop" or "clamp" (simulate/instability.h)
 };
-// Sets `method` and the three keys it names.
+// Sets `method` and the four keys it names.
 void apply_energize_method(EnergizeMethod m, SimulateSettings& s);
 inline constexpr Limits kDurationLimits{1e-3, 3600, "s"};
 inline constexpr Limits kFpsLimits{1, 1000, "frames/s"};

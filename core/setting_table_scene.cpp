@@ -333,10 +333,11 @@ Setting method() {
     Setting m = choice<EnergizeMethod>(
                     "method", at(&Shot::simulate, &SimulateSettings::method), names,
                     "how a break gives back alpha E (docs/physics.md section 4): \"exact\": the pair gains exactly "
-                    "alpha E in its own frame, equal and opposite kicks (energy_split = \"total\", directions = "
-                    "\"opposed\", exact_energy = true); \"paper\": the paper as written, "
-                    "alpha E per body with its magnitudes and directions (\"per_body\", \"paper\", false), for "
-                    "comparison. The three keys given beside it override it")
+                    "alpha E in its own frame, equal and opposite kicks passed through the joints (energy_split = "
+                    "\"total\", directions = \"opposed\", exact_energy = true, kick_bodies = \"joined\"); "
+                    "\"paper\": the paper as written, alpha E per body with its magnitudes and directions on the "
+                    "two pieces (\"per_body\", \"paper\", false, \"pieces\"), for comparison. The four keys "
+                    "given beside it override it")
                     .flag("--method")
                     .json_unless_default();
     m.read = [inner = m.read](TomlSection& s, Shot& shot) {
@@ -403,6 +404,16 @@ SettingsSection simulate_section() {
                                            "never into the partner (momentum-conserving; docs/physics.md section 4; set "
                                            "by method)")
                      .flag("--directions"),
+                 "method"),
+             preset_overridable(
+                 choice<KickBodiesMode>("kick_bodies", at(&Shot::simulate, &SimulateSettings::kick_bodies),
+                                        {{"pieces", KickBodiesMode::Pieces}, {"joined", KickBodiesMode::Joined}},
+                                        "what a break's kicks move: \"pieces\": the joint's two pieces, as free bodies; "
+                                        "\"joined\": the two pieces and everything still joined to them, in the motion "
+                                        "their joints allow, so that the joints do not swallow the kick; a break the "
+                                        "joints hold rigidly keeps its energy until a later break parts its pieces "
+                                        "(docs/physics.md section 4; set by method)")
+                     .flag("--kick-bodies"),
                  "method"),
              number("rate_limit", "s", at(&Shot::simulate, &SimulateSettings::rate_limit), kRateLimitLimits,
                     "least time between two breaks of the object (the paper's chain: 0.3); 0: off")

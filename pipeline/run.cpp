@@ -528,11 +528,14 @@ std::string format_run_summary(const RunResult& r) {
         // The energy books: what the breaks stored, alpha times it, and what the kicks gave back.
         const double stored = sim["stored_energy_J"].get<double>(), alpha = r.summary["alpha"].get<double>();
         const double injected = sim["injected_energy_J"].get<double>();
+        const double held = sim.value("held_energy_J", 0.0);
         if (sim["breaks"].get<size_t>() > 0)
-            out += fmt::format("books:    stored {:.4g} J x alpha {:g} = {:.4g} J; injected {:.4g} J{}\n", stored, alpha,
+            out += fmt::format("books:    stored {:.4g} J x alpha {:g} = {:.4g} J; injected {:.4g} J{}{}\n", stored, alpha,
                                alpha * stored, injected,
-                               alpha * stored > 0 ? fmt::format(" ({:.3f} x alpha x stored)", injected / (alpha * stored))
-                                                  : std::string());
+                               held > 0 ? fmt::format(" + {:.4g} J held in cracks that did not open", held) : std::string(),
+                               alpha * stored > 0
+                                   ? fmt::format(" ({:.3f} x alpha x stored)", (injected + held) / (alpha * stored))
+                                   : std::string());
         out += format_instability(r.summary.at("instability"));
     }
     out += fmt::format("results:  {}/\n", r.output_dir);

@@ -17,7 +17,7 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     // Breaks: count, energies, and which constraints are gone.
     std::vector<bool> broken(model.constraints.size(), false);
     size_t breaks = 0;
-    double stored = 0, injected = 0, first_break = -1;
+    double stored = 0, injected = 0, held = 0, first_break = -1;
     std::istringstream lines(breaks_jsonl);
     size_t line_no = 0;
     for (std::string line; std::getline(lines, line);) {
@@ -29,6 +29,7 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
             ++breaks;
             stored += b.at("stored_energy_J").get<double>();
             injected += b.at("injected_energy_J").get<double>();
+            held += b.value("held_energy_J", 0.0) - b.value("released_energy_J", 0.0);
             if (first_break < 0) first_break = b.at("time_s").get<double>();
             const uint32_t c = b.at("constraint").get<uint32_t>();
             if (c < broken.size()) broken[c] = true;
@@ -89,6 +90,8 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     j["first_break_s"] = first_break >= 0 ? json(first_break) : json(nullptr);
     j["stored_energy_J"] = stored;
     j["injected_energy_J"] = injected;
+    // alpha E of breaks inside pieces still joined at the end (cracks that never opened).
+    j["held_energy_J"] = held;
     j["fragments"] = fragments;
     j["kinetic_energy_after_first_break_J"] = kinetic_after ? json(*kinetic_after) : json(nullptr);
     j["spread_energy_after_first_break_J"] =

@@ -74,6 +74,7 @@ struct BulletWorld::Impl {
     std::vector<PieceBody> pieces;
     std::vector<btRigidBody*> props;
     std::vector<Joint> joints;
+    std::vector<std::vector<uint32_t>> joints_of_piece;  // the joints with a constraint at each piece
     std::vector<std::unique_ptr<btCollisionShape>> shapes;
     std::vector<std::unique_ptr<btMotionState>> motions;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
@@ -316,6 +317,7 @@ void BulletWorld::build_joints(const Model& model) {
     const Mat3 r_obj = rotation_matrix(setup_.object.pose.rotation_deg);
     const Vec3 t_obj = object_translation(model, setup_.object);
     m.joints.resize(model.constraints.size());
+    m.joints_of_piece.assign(m.pieces.size(), {});
     for (size_t i = 0; i < model.constraints.size(); ++i) {
         const Constraint& c = model.constraints[i];
         Impl::Joint& j = m.joints[i];
@@ -336,6 +338,8 @@ void BulletWorld::build_joints(const Model& model) {
         if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * setup_.h));
         m.world.addConstraint(j.constraint.get(), true);
         j.active = true;
+        m.joints_of_piece[c.piece_a].push_back(uint32_t(i));
+        m.joints_of_piece[c.piece_b].push_back(uint32_t(i));
     }
 }
 
@@ -570,6 +574,89 @@ void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kic
     }
 }
 
+void BulletWorld::joined_pieces(size_t c, size_t limit, JoinedPieces* out) const {
+    const Impl& m = *impl_;
+    const uint32_t start[2] = {m.joints[c].piece_a, m.joints[c].piece_b};
+    *out = JoinedPieces{};
+    std::vector<int8_t> side(m.pieces.size(), -1);
+    for (int s = 0; s < 2; ++s) {
+        if (side[start[s]] >= 0) break;  // piece_b was reached from piece_a: not parted
+        if (s == 1) {
+            out->parted = true;
+            out->side_b = out->pieces.size();
+        }
+        side[start[s]] = int8_t(s);
+        out->pieces.push_back(start[s]);
+        for (size_t next = out->pieces.size() - 1; next < out->pieces.size(); ++next) {
+            const uint32_t p = out->pieces[next];
+            for (uint32_t j : m.joints_of_piece[p]) {
+                if (!m.joints[j].active) continue;
+                const uint32_t q = m.joints[j].piece_a == p ? m.joints[j].piece_b : m.joints[j].piece_a;
+                if (side[q] >= 0) continue;
+                side[q] = int8_t(s);
+                out->pieces.push_back(q);
+            }
+            // Past the limit with piece_b already reached: a break inside a large body.
+            if (s == 0 && out->pieces.size() > limit && side[start[1]] == 0) {
+                out->held = true;
+                return;
+            }
+        }
+    }
+    if (!out->parted) out->side_b = out->pieces.size();
+    for (uint32_t p : out->pieces)
+        for (uint32_t j : m.joints_of_piece[p])
+            if (m.joints[j].active && m.joints[j].piece_a == p) out->joints.push_back(j);
+    std::sort(out->joints.begin(), out->joints.end());
+}
+
+void BulletWorld::joined_bodies(const JoinedPieces& joined, std::vector<JoinedBody>* bodies,
+                                std::vector<JoinedJoint>* joints, std::vector<VelocityChange>* velocities) const {
+    const Impl& m = *impl_;
+    bodies->resize(joined.pieces.size());
+    velocities->resize(joined.pieces.size());
+    std::vector<uint32_t> index(m.pieces.size(), UINT32_MAX);
+    for (size_t i = 0; i < joined.pieces.size(); ++i) {
+        const Impl::PieceBody& piece = m.pieces[joined.pieces[i]];
+        const btRigidBody& b = *piece.body;
+        index[joined.pieces[i]] = uint32_t(i);
+        JoinedBody& body = (*bodies)[i];
+        body.dynamic = piece.dynamic;
+        body.inv_mass = piece.dynamic ? double(b.getInvMass()) : 0.0;
+        body.inv_inertia = piece.dynamic ? to_eigen(b.getInvInertiaTensorWorld()) : Mat3::Zero();
+        body.centre = to_eigen(b.getCenterOfMassPosition());
+        (*velocities)[i] = {to_eigen(b.getLinearVelocity()), to_eigen(b.getAngularVelocity())};
+    }
+    joints->clear();
+    for (uint32_t j : joined.joints) {
+        const CompliantPointConstraint& k = *m.joints[j].constraint;
+        const Vec3 pivot = 0.5 * (to_eigen(k.getRigidBodyA().getWorldTransform() * k.getPivotInA()) +
+                                  to_eigen(k.getRigidBodyB().getWorldTransform() * k.getPivotInB()));
+        joints->push_back({index[m.joints[j].piece_a], index[m.joints[j].piece_b], pivot});
+    }
+}
+
+void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv) {
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        if (!impl_->pieces[pieces[i]].dynamic) continue;
+        btRigidBody* b = impl_->pieces[pieces[i]].body;
+        b->setLinearVelocity(b->getLinearVelocity() + to_bullet(dv[i].linear));
+        b->setAngularVelocity(b->getAngularVelocity() + to_bullet(dv[i].angular));
+    }
+}
+
+Vec3 BulletWorld::centre_velocity(const std::vector<uint32_t>& pieces) const {
+    double mass = 0;
+    Vec3 momentum = Vec3::Zero();
+    for (uint32_t p : pieces) {
+        if (!impl_->pieces[p].dynamic) continue;
+        const btRigidBody& b = *impl_->pieces[p].body;
+        mass += 1.0 / b.getInvMass();
+        momentum += to_eigen(b.getLinearVelocity()) / b.getInvMass();
+    }
+    return mass > 0 ? Vec3(momentum / mass) : Vec3::Zero();
+}
+
 namespace {
 
 double body_kinetic_energy(const btRigidBody& b, const Vec3& frame = Vec3::Zero()) {
@@ -591,6 +678,13 @@ double BulletWorld::kinetic_energy_of_pair(size_t c, const Vec3& frame) const {
     const auto& j = impl_->joints[c];
     double e = 0;
     for (uint32_t p : {j.piece_a, j.piece_b})
+        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body, frame);
+    return e;
+}
+
+double BulletWorld::kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame) const {
+    double e = 0;
+    for (uint32_t p : pieces)
         if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body, frame);
     return e;
 }

@@ -18,6 +18,7 @@
 // skips the break check.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "core/scene_settings.h"
 #include "core/trajectory.h"
 #include "simulate/energized_fracture.h"
+#include "simulate/joined_response.h"
 
 namespace shatter {
 
@@ -135,6 +137,30 @@ public:
     std::array<BodyAtPivot, 2> bodies_at_pivot(size_t c, Vec3* pivot) const;
     // Applies the impulses (N s) of a break at the world point to the constraint's two pieces.
     void apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks);
+
+    // What a break's kicks act through (simulate/joined_response.h): the pieces joined, through
+    // the active joints, to either piece of a constraint that has left the world, and the active
+    // joints among them. `parted`: the two pieces are no longer joined (side 1 holds piece_b's).
+    struct JoinedPieces {
+        std::vector<uint32_t> pieces;  // piece_a's side first, each side in the order reached
+        std::vector<uint32_t> joints;  // ascending
+        size_t side_b = 0;             // pieces[side_b..] are piece_b's side (none when not parted)
+        bool parted = false;
+        // Not parted, and more than `limit` pieces joined: the search stopped there (pieces and
+        // joints incomplete).
+        bool held = false;
+    };
+    void joined_pieces(size_t c, size_t limit, JoinedPieces* out) const;
+    // The bodies (in the order of `joined.pieces`) and joints as joined_response() takes them,
+    // and the bodies' velocities.
+    void joined_bodies(const JoinedPieces& joined, std::vector<JoinedBody>* bodies, std::vector<JoinedJoint>* joints,
+                       std::vector<VelocityChange>* velocities) const;
+    // Adds dv[i] to the velocities of piece pieces[i].
+    void add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv);
+    // The velocity of the centre of mass of the given pieces' dynamic ones (zero if none) (unit: m/s).
+    Vec3 centre_velocity(const std::vector<uint32_t>& pieces) const;
+    // Of the given pieces' dynamic ones, in a frame moving at velocity `frame` (unit: J).
+    double kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame = Vec3::Zero()) const;
 
     // Energy books over the dynamic pieces (driven pieces and props are scripted, not counted).
     double kinetic_energy() const;    // (unit: J)

@@ -27,15 +27,6 @@ Vec3 random_orthogonal(const Vec3& n, uint64_t key) {
     return std::cos(angle) * e1 + std::sin(angle) * e2;
 }
 
-// The mu >= 0 with a mu^2 + b mu = e (a > 0, e >= 0): the impulse that adds kinetic energy e to
-// bodies whose pivot velocities along the kick sum to b, a being (1/2) sum 1/m_G.
-double solve_magnitude(double a, double b, double e) {
-    if (e <= 0) return 0;
-    const double disc = std::sqrt(b * b + 4 * a * e);
-    // Both forms are the same root; pick the one without cancellation.
-    return b >= 0 ? 2 * e / (b + disc) : (disc - b) / (2 * a);
-}
-
 // Directions::Force, body a's direction: along the force the constraint applied to a, signed to
 // point away from b's centre of mass (a force exactly across the line of centres keeps its own
 // sign: the joint's release). Body b takes the negative, so the pair's momentum is unchanged.
@@ -49,6 +40,13 @@ Vec3 separating_force_direction(const BodyAtPivot& a, const BodyAtPivot& b, uint
 }
 
 }  // namespace
+
+double kick_magnitude(double a, double b, double e) {
+    if (e <= 0) return 0;
+    const double disc = std::sqrt(b * b + 4 * a * e);
+    // Both forms are the same root; pick the one without cancellation.
+    return b >= 0 ? 2 * e / (b + disc) : (disc - b) / (2 * a);
+}
 
 double stored_energy(const Vec3& force, double stiffness) {
     assert(stiffness > 0);
@@ -83,8 +81,8 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     return energize(a, b, stiffness, s, random_key, pair_frame_velocity(a, b));
 }
 
-BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
-                    uint64_t random_key, const Vec3& frame) {
+BreakKicks kick_directions(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
+                           uint64_t random_key) {
     BreakKicks out;
     out.stored_energy = stored_energy(a.force, stiffness);
     const std::array<const BodyAtPivot*, 2> body = {&a, &b};
@@ -103,7 +101,18 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
             kick.direction = kick_direction(body[k]->force, body[k]->torque, body[k]->r, random_key + 0x51ed27u * k,
                                             s.tiny_ratio, &kick.random_direction);
         }
-        kick.effective_mass = effective_mass(body[k]->inv_mass, body[k]->inv_inertia, body[k]->r, kick.direction);
+    }
+    return out;
+}
+
+BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& s,
+                    uint64_t random_key, const Vec3& frame) {
+    BreakKicks out = kick_directions(a, b, stiffness, s, random_key);
+    const std::array<const BodyAtPivot*, 2> body = {&a, &b};
+    for (int k = 0; k < 2; ++k) {
+        Kick& kick = out.kick[k];
+        if (body[k]->dynamic)
+            kick.effective_mass = effective_mass(body[k]->inv_mass, body[k]->inv_inertia, body[k]->r, kick.direction);
     }
     const double released = s.alpha * out.stored_energy;
     const bool both = a.dynamic && b.dynamic;
@@ -112,7 +121,7 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
     auto b_of = [&](int k) { return s.exact_energy ? out.kick[k].direction.dot(body[k]->velocity - frame) : 0.0; };
     if (both && (s.split == EnergySplit::Total || s.directions != KickDirections::Paper)) {
         // Equal magnitudes, alpha E in all: mu^2 (a_a + a_b) + mu (b_a + b_b) = alpha E.
-        const double mu = solve_magnitude(a_of(0) + a_of(1), b_of(0) + b_of(1), released);
+        const double mu = kick_magnitude(a_of(0) + a_of(1), b_of(0) + b_of(1), released);
         for (int k = 0; k < 2; ++k) {
             out.kick[k].magnitude = mu;
             out.kick[k].energy = mu * b_of(k) + mu * mu * a_of(k);
@@ -121,7 +130,7 @@ BreakKicks energize(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness
         // Each dynamic body takes alpha E (PerBody; or the only dynamic body takes it all).
         for (int k = 0; k < 2; ++k) {
             if (!body[k]->dynamic) continue;
-            out.kick[k].magnitude = solve_magnitude(a_of(k), b_of(k), released);
+            out.kick[k].magnitude = kick_magnitude(a_of(k), b_of(k), released);
             out.kick[k].energy = released;
         }
     }

@@ -63,6 +63,9 @@ namespace shatter {
 
 enum class EnergySplit { Total, PerBody };
 enum class KickDirections { Paper, Opposed, Force };
+// What a break's kicks move: its two pieces as free bodies, or the pieces with everything still
+// joined to them, as their joints allow (joined_response.h; simulate/breaking.h).
+enum class KickBodies { Pieces, Joined };
 
 // One body at the breaking constraint's pivot, in world coordinates.
 struct BodyAtPivot {
@@ -103,6 +106,7 @@ struct EnergizeSettings {
     double tiny_ratio = 1e-6;
     // Solve the magnitudes for the bodies' motion so that the kinetic energy gained is exact.
     bool exact_energy = false;
+    KickBodies bodies = KickBodies::Pieces;
 };
 
 // E = 1/2 |f|^2 / k (unit: J).
@@ -115,6 +119,15 @@ double effective_mass(double inv_mass, const Mat3& inv_inertia, const Vec3& r, c
 // |t x f| is tiny. Sets *random accordingly.
 Vec3 kick_direction(const Vec3& force, const Vec3& torque, const Vec3& r, uint64_t random_key, double tiny_ratio,
                     bool* random);
+
+// The kicks' directions (energize()'s rules) and the stored energy; magnitudes and energies zero.
+BreakKicks kick_directions(const BodyAtPivot& a, const BodyAtPivot& b, double stiffness, const EnergizeSettings& settings,
+                           uint64_t random_key);
+
+// The impulse magnitude mu >= 0 that adds kinetic energy e >= 0 to bodies that gain
+// mu b + mu^2 a from it (a > 0; b: the bodies' motion along the kicks; a: half the kicks' work per
+// unit impulse squared, sum 1/(2 m_G) for free bodies) (unit: N s).
+double kick_magnitude(double a, double b, double e);
 
 // The impulses to apply at the pivot when a constraint with stiffness k (N/m) breaks.
 // `random_key` makes the random directions reproducible (e.g. a hash of seed and constraint).

@@ -35,6 +35,8 @@ std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
                                     {"kicks", kicks},
                                     {"injected_energy_J", b.injected_energy},
                                     {"momentum_work_J", b.momentum_work}};
+        if (b.held_energy > 0) j["held_energy_J"] = b.held_energy;
+        if (b.released_energy > 0) j["released_energy_J"] = b.released_energy;
         out += j.dump() + "\n";
     }
     return out;

@@ -31,6 +31,7 @@ EnergizeSettings energize_settings(const SimulationInput& in) {
         case KickDirectionMode::Force: e.directions = KickDirections::Force; break;
     }
     e.exact_energy = in.simulate.exact_energy;
+    e.bodies = in.simulate.kick_bodies == KickBodiesMode::Joined ? KickBodies::Joined : KickBodies::Pieces;
     return e;
 }
 
@@ -132,13 +133,22 @@ public:
         if (start) world_.step();
         // Each break's energy is counted in its pair's frame in the state the kicks act on (the
         // re-run one after a rollback), before any of this step's kicks: docs/physics.md section 4.
+        // With joined kicks, in the frame of everything joined to the two pieces.
         std::vector<Vec3> frames;
-        for (size_t c : broken) {
+        std::vector<std::optional<BulletWorld::JoinedPieces>> joined(broken.size());
+        for (size_t i = 0; i < broken.size(); ++i) {
             Vec3 pivot;
-            const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(c, &pivot);
-            frames.push_back(pair_frame_velocity(now[0], now[1]));
+            const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(broken[i], &pivot);
+            if (energize_.bodies == KickBodies::Joined) {
+                joined[i].emplace();
+                world_.joined_pieces(broken[i], kJoinedPiecesLimit, &*joined[i]);
+                frames.push_back(world_.centre_velocity(joined[i]->pieces));
+            } else {
+                frames.push_back(pair_frame_velocity(now[0], now[1]));
+            }
         }
-        for (size_t i = 0; i < broken.size(); ++i) energize_break(broken[i], loads[i], frames[i], out);
+        for (size_t i = 0; i < broken.size(); ++i)
+            energize_break(broken[i], loads[i], frames[i], joined[i] ? &*joined[i] : nullptr, out);
     }
 
     double injected() const { return injected_; }  // (unit: J)
@@ -175,9 +185,28 @@ public:
     }
 
 private:
-    void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame, SimulationResult& out) {
+    void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame,
+                        const BulletWorld::JoinedPieces* joined, SimulationResult& out) {
         const auto start = std::chrono::steady_clock::now();
-        BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame);
+        // The energy held by earlier breaks whose two pieces this one parts.
+        double release = 0;
+        std::vector<bool> parted(held_.size(), false);
+        if (joined && joined->parted) {
+            std::vector<int8_t> side(world_.pieces(), -1);
+            for (size_t i = 0; i < joined->pieces.size(); ++i) side[joined->pieces[i]] = int8_t(i >= joined->side_b);
+            for (size_t h = 0; h < held_.size(); ++h) {
+                const int8_t a = side[held_[h].piece_a], b = side[held_[h].piece_b];
+                if (a >= 0 && b >= 0 && a != b) parted[h] = true, release += held_[h].energy;
+            }
+        }
+        BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame, joined, release);
+        if (r.released_energy > 0) {
+            size_t kept = 0;
+            for (size_t h = 0; h < held_.size(); ++h)
+                if (!parted[h]) held_[kept++] = held_[h];
+            held_.resize(kept);
+        }
+        if (r.held_energy > 0) held_.push_back({r.piece_a, r.piece_b, r.held_energy});
         r.step = world_.h();
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy + r.momentum_work;
@@ -191,6 +220,12 @@ private:
     EnergizeSettings energize_;
     double injected_ = 0, removed_ = 0;
     double frame_residual_ = 0;
+    // Energy held by breaks whose pieces the joints still hold together, until a break parts them.
+    struct Held {
+        uint32_t piece_a, piece_b;
+        double energy;  // (unit: J)
+    };
+    std::vector<Held> held_;
     std::vector<Vec3> before_;  // the joints' forces before a probe step
 };
 

@@ -45,7 +45,18 @@ struct BreakRecord {
     // What the impulses' net momentum dP added on top in the world's frame, dP . V: zero for
     // opposed directions or a pair at rest (unit: J).
     double momentum_work = 0;
+    // With kick_bodies = "joined": alpha E that this break could not give back because the joints
+    // around it hold its two pieces together (a crack that has not opened), kept until a later
+    // break parts them; and the held energy of earlier breaks that this one gave back with its
+    // own, having parted their pieces (unit: J).
+    double held_energy = 0;
+    double released_energy = 0;
 };
+
+// What a break gives back: alpha E, plus the held energy it releases, less what it holds (unit: J).
+inline double given_back(const BreakRecord& b) {
+    return b.alpha * b.kicks.stored_energy + b.released_energy - b.held_energy;
+}
 
 // The energy books at one recorded frame (unit: J).
 struct EnergySample {

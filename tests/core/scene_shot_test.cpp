@@ -502,11 +502,12 @@ TEST(SceneShot, AKinematicBodysMeshKeysAreInItsJsonOnly) {
 TEST(SceneSettings, OtherSectionsWriteEveryFieldWithEnumsAsStrings) {
     SimulateSettings sim;
     EXPECT_EQ(to_json(sim).dump(), R"({"duration":4.0,"fps":30.0,"substeps":8,"iterations":20,"energy_split":"total",)"
-                                   R"("directions":"opposed","rate_limit":0.0,"rollback":false,"exact_energy":true,)"
-                                   R"("seed":1,"max_cfm":0.5})");
+                                   R"("directions":"opposed","kick_bodies":"joined","rate_limit":0.0,"rollback":false,)"
+                                   R"("exact_energy":true,"seed":1,"max_cfm":0.5})");
     apply_energize_method(EnergizeMethod::Paper, sim);
     EXPECT_EQ(to_json(sim).dump(), R"({"duration":4.0,"fps":30.0,"substeps":8,"iterations":20,"method":"paper",)"
-                                   R"("energy_split":"per_body","directions":"paper","rate_limit":0.0,"rollback":false,)"
+                                   R"("energy_split":"per_body","directions":"paper","kick_bodies":"pieces","rate_limit":0.0,)"
+                                   R"("rollback":false,)"
                                    R"("exact_energy":false,"seed":1,"max_cfm":0.5})");
     MaterialSettings mat;
     EXPECT_EQ(to_json(mat).dump(), R"({"density":null,"stiffness":10000000000.0,"damping":0.0,"strength":1000000.0,)"
