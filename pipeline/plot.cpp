@@ -58,7 +58,14 @@ if len(curves) == 1:
     if c["elastic"]:
         ax.plot(c["t"], c["elastic"], color="C2", linestyle=":", label="elastic (constraints' stretch)")
     ax.plot(c["t"], c["injected"], color="C3", linestyle="--", label="injected (breaks)")
-    ax.legend(loc="best")
+    if c["books"]:
+        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping and contacts")
+        if any(d != 0 for d in c["driven"]):
+            ax.plot(c["t"], c["driven"], color="C5", linestyle="-.", label="given by driven pieces and props")
+        b0 = c["books"][0]
+        ax.plot(c["t"], [b - b0 for b in c["books"]], color="k", linewidth=0.8,
+                label="books (every term, relative to t = 0): flat when all is counted")
+    ax.legend(loc="best", fontsize="small")
 else:
     for i, c in enumerate(curves):
         colour = "C%d" % (i % 10)
@@ -79,6 +86,10 @@ fig.savefig(sys.argv[1], format="png", dpi=100, metadata={"Software": None})
 struct EnergySeries {
     std::vector<double> t, kinetic, potential, stored, injected;
     std::vector<double> elastic;  // empty in files of older versions
+    // kinetic + potential + elastic + removed + joints_damped + contacts - injected - driven,
+    // joints_damped + contacts, and driven (docs/physics.md section 5c); empty in files of older
+    // versions.
+    std::vector<double> books, lost, driven;
 };
 
 std::vector<std::string> split(const std::string& line, char sep) {
@@ -132,6 +143,29 @@ EnergySeries read_energy_csv(const std::string& path) {
         }
     }
     if (s.t.empty()) throw_input_error(path, "the energy CSV has a header but no samples", fix);
+    // The books' other columns, when the file has them all.
+    const char* more[] = {"removed_J", "joints_damped_J", "contacts_J", "driven_J"};
+    size_t at[4];
+    for (int k = 0; k < 4; ++k) {
+        auto it = std::find(header.begin(), header.end(), more[k]);
+        if (it == header.end() || s.elastic.empty()) return s;
+        at[k] = size_t(it - header.begin());
+    }
+    for (size_t i = 1; i < lines.size(); ++i) {
+        const std::vector<std::string> fields = split(lines[i], ',');
+        double v[4];
+        for (int k = 0; k < 4; ++k) {
+            const std::string& f = fields[at[k]];
+            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
+            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[k]))
+                throw_input_error(fmt::format("{}:{}", path, i + 1), fmt::format("{} '{}' is not a finite number", more[k], f),
+                                  fix);
+        }
+        const size_t r = i - 1;
+        s.books.push_back(s.kinetic[r] + s.potential[r] + s.elastic[r] + v[0] + v[1] + v[2] - s.injected[r] - v[3]);
+        s.lost.push_back(v[1] + v[2]);
+        s.driven.push_back(v[3]);
+    }
     return s;
 }
 
@@ -145,7 +179,10 @@ std::string plot_input(const std::vector<EnergyCurve>& curves, const std::string
                                {"potential", s.potential},
                                {"stored", s.stored},
                                {"injected", s.injected},
-                               {"elastic", s.elastic}});
+                               {"elastic", s.elastic},
+                               {"books", s.books},
+                               {"lost", s.lost},
+                               {"driven", s.driven}});
     }
     return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }

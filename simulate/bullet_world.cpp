@@ -75,6 +75,18 @@ struct BulletWorld::Impl {
     std::vector<btRigidBody*> props;
     std::vector<Joint> joints;
     std::vector<std::vector<uint32_t>> joints_of_piece;  // the joints with a constraint at each piece
+    // The books of the steps (BulletWorld::StepWork), each joint's elastic energy after the last
+    // step (elastic_known: still the poses'), and every body's velocities before the step.
+    StepWork work;
+    std::vector<double> elastic;
+    bool elastic_known = false;
+    std::vector<std::pair<btVector3, btVector3>> before;
+    // The largest joint residual after the last step and where, while nothing has changed since.
+    double residual_max = 0;
+    int64_t residual_worst = -1;
+    bool residual_known = false;
+    void account_step();
+    static double joint_elastic(const Joint& j);  // k |d|^2 / 2 from the poses (unit: J)
     std::vector<std::unique_ptr<btCollisionShape>> shapes;
     std::vector<std::unique_ptr<btMotionState>> motions;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
@@ -94,6 +106,7 @@ struct BulletWorld::Impl {
         if (!motion) body->setWorldTransform(t);
         body->setActivationState(DISABLE_DEACTIVATION);
         world.addRigidBody(body.get());
+        body->setUserIndex2(int(bodies.size()));  // its place in `bodies` (account_step)
         bodies.push_back(std::move(body));
         return bodies.back().get();
     }
@@ -346,11 +359,97 @@ void BulletWorld::build_joints(const Model& model) {
 void BulletWorld::step() {
     time_ += setup_.h;
     impl_->solver.reset_counts();
-    impl_->world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
+    Impl& m = *impl_;
+    if (!m.elastic_known) {
+        m.elastic.assign(m.joints.size(), 0.0);
+        for (size_t c = 0; c < m.joints.size(); ++c)
+            if (m.joints[c].active && m.joints[c].constraint) m.elastic[c] = Impl::joint_elastic(m.joints[c]);
+        m.elastic_known = true;
+    }
+    m.before.resize(m.bodies.size());
+    for (size_t i = 0; i < m.bodies.size(); ++i) m.before[i] = {m.bodies[i]->getLinearVelocity(), m.bodies[i]->getAngularVelocity()};
+    m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
+    m.account_step();
     release_parted_pairs();
 }
 
+BulletWorld::StepWork BulletWorld::step_work() const { return impl_->work; }
+
+namespace {
+
+// The mean of a body's velocity at world point p before and after the step (`before`: its
+// linear and angular velocity at the start).
+btVector3 mean_velocity(const btRigidBody& b, const std::pair<btVector3, btVector3>& before, const btVector3& p) {
+    const btVector3 r = p - b.getCenterOfMassPosition();
+    const btVector3 v = b.getLinearVelocity() + b.getAngularVelocity().cross(r);
+    const btVector3 v0 = before.first + before.second.cross(r);
+    return 0.5 * (v + v0);
+}
+
+}  // namespace
+
+void BulletWorld::Impl::account_step() {
+    residual_max = 0;
+    residual_worst = -1;
+    // Work of the impulse P on body b at point p: a dynamic piece's, or a driven one's (a driven
+    // piece or prop, whose motion is scripted; static bodies do not move).
+    auto work_of = [&](const btRigidBody& b, const btVector3& p, const btVector3& impulse, double* on_pieces,
+                       double* on_drivers) {
+        // (A body of zero mass is flagged static even when it is kinematic.)
+        if (b.isStaticObject() && !b.isKinematicObject()) return;
+        const double w = double(impulse.dot(mean_velocity(b, before[size_t(b.getUserIndex2())], p)));
+        *(b.isKinematicObject() ? on_drivers : on_pieces) += w;
+    };
+    for (size_t c = 0; c < joints.size(); ++c) {
+        Joint& j = joints[c];
+        if (!j.active || !j.constraint) continue;
+        const CompliantPointConstraint& k = *j.constraint;
+        const btRigidBody& a = k.getRigidBodyA();
+        const btRigidBody& b = k.getRigidBodyB();
+        const btVector3 force = k.feedback().m_appliedForceBodyA;
+        const btVector3 impulse = force * btScalar(k.step());
+        const btVector3 pa = a.getWorldTransform() * k.getPivotInA(), pb = b.getWorldTransform() * k.getPivotInB();
+        double pieces = 0, drivers = 0;
+        work_of(a, pa, impulse, &pieces, &drivers);
+        work_of(b, pb, -impulse, &pieces, &drivers);
+        const Vec3 stretch = to_eigen(pb - pa);
+        const double e = 0.5 * k.stiffness() * stretch.squaredNorm();
+        // The joint's residual (BulletWorld::joint_residual, the same arithmetic), for the step's largest.
+        if (j.strength > 0) {
+            const Vec3 rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
+                                       a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
+            const Vec3 spring = k.stiffness() * stretch + k.damping() * rate;
+            const double r = (to_eigen(force) - spring).norm() / j.strength;
+            if (r > residual_max) residual_max = r, residual_worst = int64_t(c);
+        }
+        // The joint gave the pieces `pieces`, the drivers `drivers`, and stored e - elastic[c]:
+        // what is left of nothing it took away.
+        work.joints += -(pieces + drivers) - (e - elastic[c]);
+        work.driven -= drivers;
+        elastic[c] = e;
+    }
+    for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
+        btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
+        const auto* a = btRigidBody::upcast(manifold->getBody0());
+        const auto* b = btRigidBody::upcast(manifold->getBody1());
+        if (!a || !b) continue;
+        for (int p = 0; p < manifold->getNumContacts(); ++p) {
+            const btManifoldPoint& point = manifold->getContactPoint(p);
+            const btVector3 impulse = point.m_normalWorldOnB * point.m_appliedImpulse +
+                                      point.m_lateralFrictionDir1 * point.m_appliedImpulseLateral1 +
+                                      point.m_lateralFrictionDir2 * point.m_appliedImpulseLateral2;
+            double pieces = 0, drivers = 0;
+            work_of(*a, point.getPositionWorldOnA(), impulse, &pieces, &drivers);
+            work_of(*b, point.getPositionWorldOnB(), -impulse, &pieces, &drivers);
+            work.contacts += -(pieces + drivers);
+            work.driven -= drivers;
+        }
+    }
+    residual_known = true;
+}
+
 void BulletWorld::set_step(double h) {
+    impl_->residual_known = false;
     setup_.h = h;
     for (auto& j : impl_->joints) {
         if (!j.constraint) continue;
@@ -437,6 +536,7 @@ struct BulletWorld::Snapshot {
     };
     std::vector<Body> bodies;
     double time = 0;
+    StepWork work;
 };
 
 void BulletWorld::forget_contact_impulses() {
@@ -455,6 +555,7 @@ void BulletWorld::forget_contact_impulses() {
 std::shared_ptr<BulletWorld::Snapshot> BulletWorld::save() const {
     auto s = std::make_shared<Snapshot>();
     s->time = time_;
+    s->work = impl_->work;
     for (const auto& b : impl_->bodies)
         s->bodies.push_back({b->getWorldTransform(), b->getInterpolationWorldTransform(), b->getLinearVelocity(),
                              b->getAngularVelocity(), b->getInterpolationLinearVelocity(),
@@ -464,6 +565,9 @@ std::shared_ptr<BulletWorld::Snapshot> BulletWorld::save() const {
 
 void BulletWorld::restore(const Snapshot& s) {
     time_ = s.time;
+    impl_->work = s.work;
+    impl_->residual_known = false;
+    impl_->elastic_known = false;
     for (size_t i = 0; i < s.bodies.size(); ++i) {
         btRigidBody& b = *impl_->bodies[i];
         const Snapshot::Body& v = s.bodies[i];
@@ -494,6 +598,7 @@ bool BulletWorld::bullet_disabled(size_t c) const {
     return j.active && j.constraint && !j.constraint->isEnabled();
 }
 void BulletWorld::enable(size_t c) {
+    impl_->residual_known = false;
     const auto& j = impl_->joints[c];
     if (j.constraint) j.constraint->setEnabled(true);
 }
@@ -518,6 +623,7 @@ void BulletWorld::remove_constraint(size_t c) {
     Impl& m = *impl_;
     auto& j = m.joints[c];
     if (!j.active) return;
+    m.residual_known = false;
     m.world.removeConstraint(j.constraint.get());
     j.active = false;
     // Joined pieces never collide, so a pair whose last joint breaks may overlap by then: partly
@@ -565,6 +671,7 @@ std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) c
 }
 
 void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks) {
+    impl_->residual_known = false;
     const auto& j = impl_->joints[c];
     const uint32_t piece[2] = {j.piece_a, j.piece_b};
     for (int s = 0; s < 2; ++s) {
@@ -637,6 +744,7 @@ void BulletWorld::joined_bodies(const JoinedPieces& joined, std::vector<JoinedBo
 }
 
 void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv) {
+    impl_->residual_known = false;
     for (size_t i = 0; i < pieces.size(); ++i) {
         if (!impl_->pieces[pieces[i]].dynamic) continue;
         btRigidBody* b = impl_->pieces[pieces[i]].body;
@@ -696,6 +804,13 @@ double BulletWorld::potential_energy() const {
     return e;
 }
 
+double BulletWorld::Impl::joint_elastic(const Joint& j) {
+    const CompliantPointConstraint& k = *j.constraint;
+    const btVector3 d = k.getRigidBodyB().getWorldTransform() * k.getPivotInB() -
+                        k.getRigidBodyA().getWorldTransform() * k.getPivotInA();
+    return 0.5 * k.stiffness() * double(d.length2());
+}
+
 double BulletWorld::Impl::stored_energy_of(const Joint& j) {
     const Vec3 f = to_eigen(j.constraint->feedback().m_appliedForceBodyA);
     return shatter::stored_energy(f, j.constraint->stiffness());
@@ -733,6 +848,10 @@ double BulletWorld::joint_residual(size_t c) const {
 }
 
 double BulletWorld::max_joint_residual(int64_t* worst) const {
+    if (impl_->residual_known) {
+        *worst = impl_->residual_worst;
+        return impl_->residual_max;
+    }
     double most = 0;
     *worst = -1;
     for (size_t c = 0; c < impl_->joints.size(); ++c) {
@@ -782,6 +901,7 @@ bool BulletWorld::finite() const {
 }
 
 void BulletWorld::scale_piece_velocities(double factor) {
+    impl_->residual_known = false;
     for (auto& p : impl_->pieces) {
         if (!p.dynamic) continue;
         p.body->setLinearVelocity(p.body->getLinearVelocity() * factor);

@@ -171,6 +171,19 @@ public:
     // The same read from the poses: sum over active constraints of k |d|^2 / 2, d the stretch
     // (joint_stretch). Equal to stored_energy() when every joint's force matches its stretch.
     double elastic_energy() const;    // (unit: J)
+    // Where the steps so far sent energy besides the pieces' motion, height and joints' stretch,
+    // from each force's impulse on the mean of its bodies' velocities before and after the step
+    // (the kinetic energy an impulse P adds to a body is exactly P . (v0 + v1) / 2):
+    struct StepWork {
+        // Taken from the pieces' motion by the joints and not stored in their stretch: their
+        // damping and the implicit step's (a stiff joint at omega h >> 1 relaxes without ringing).
+        double joints = 0;    // (unit: J)
+        // Taken by contacts: friction and inelastic impacts (unit: J).
+        double contacts = 0;
+        // Given to the dynamic pieces by driven pieces and props, through joints and contacts (unit: J).
+        double driven = 0;
+    };
+    StepWork step_work() const;
     Vec3 linear_momentum() const;     // (unit: kg m/s)
     Vec3 angular_momentum() const;    // about the world origin (unit: kg m^2/s)
     bool finite() const;              // every body's position and velocity finite

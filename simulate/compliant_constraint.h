@@ -28,6 +28,7 @@ public:
 
     // A new solver step h (the automatic step): ERP and the rows' CFM follow it.
     void set_step(double h);
+    double step() const { return h_; }  // (unit: s)
     double stiffness() const { return k_; }
     double damping() const { return c_; }
     // The force at which it breaks (unit: N): the scale of its convergence residual.

@@ -178,8 +178,11 @@ public:
 
     // The books at the end of a frame; the residual is the frame's largest (and starts again).
     EnergySample books() {
-        const EnergySample e{world_.time(),    world_.kinetic_energy(), world_.potential_energy(),
-                             world_.stored_energy(), injected_, removed_, world_.elastic_energy(), frame_residual_};
+        const BulletWorld::StepWork w = world_.step_work();
+        const EnergySample e{world_.time(),        world_.kinetic_energy(), world_.potential_energy(),
+                             world_.stored_energy(), injected_,              removed_,
+                             world_.elastic_energy(), frame_residual_,       w.joints,
+                             w.contacts,             w.driven};
         frame_residual_ = 0;
         return e;
     }
@@ -210,7 +213,9 @@ private:
         r.step = world_.h();
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy + r.momentum_work;
-        removed_ += r.kicks.stored_energy;
+        // What leaves the elastic column: the joint's energy by its stretch (equal to E = |f|^2 / 2k
+        // when its force matches its stretch).
+        removed_ += 0.5 * world_.stiffness(c) * world_.joint_stretch(c).stretch.squaredNorm();
         out.breaks.push_back(r);
     }
 

@@ -65,11 +65,18 @@ struct EnergySample {
     double potential = 0;  // gravitational, -sum m g.x
     double stored = 0;     // in the active constraints, |f|^2 / 2k
     double injected = 0;   // by energizing so far, in the world's frame (injected + momentum work)
-    double removed = 0;    // stored energy of the constraints broken so far
+    double removed = 0;    // elastic energy (k |d|^2 / 2 by the stretch) of the constraints broken so far
     double elastic = 0;    // in the active constraints by their stretch, k |d|^2 / 2
     // The largest joint residual (BulletWorld::joint_residual: the solver's force against the
     // stretch's, over the strength) in the steps since the previous sample (unit: 1)
     double residual = 0;
+    // So far: taken from the pieces' motion by the joints' damping and the implicit step,
+    // taken by contacts, and given by driven pieces and props (BulletWorld::StepWork). With them the
+    // books close: kinetic + potential + elastic + removed + joints_damped + contacts - injected
+    // - driven stays constant (docs/physics.md, "The books").
+    double joints_damped = 0;
+    double contacts = 0;
+    double driven = 0;
 };
 
 // The largest joint residual of a run: where the joints' forces matched their stretch least.

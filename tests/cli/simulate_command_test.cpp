@@ -35,7 +35,8 @@ TEST(SimulateCommand, WritesTrajectoryBreakLogAndEnergyAndSaysSo) {
     EXPECT_EQ(t.frames(), 16u);  // 0.5 s at 30 fps, frame 0 included
     EXPECT_TRUE(t.complete);
     const std::string energy = slurp(dir.file("out/cube.energy.csv"));
-    EXPECT_EQ(energy.substr(0, energy.find('\n')), "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J,elastic_J,joint_residual");
+    EXPECT_EQ(energy.substr(0, energy.find('\n')), "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J,elastic_J,joint_residual,"
+                                                      "joints_damped_J,contacts_J,driven_J");
     EXPECT_NE(r.out.find("wrote:"), std::string::npos);
     EXPECT_NE(r.out.find("cube.breaks.jsonl"), std::string::npos);
 }
