@@ -354,9 +354,10 @@ SettingsSection simulate_section() {
     return {"simulate",
             {custom("duration", "s, or \"auto\"", "4", "0.001 to 3600, or \"auto\"",
                     "simulated time; frames are recorded at 0, 1/fps, ... up to duration. \"auto\": until every piece "
-                    "has been at rest (no point of it faster than 0.02 m/s, or 0.04 object sizes per second for an "
-                    "object over 0.5 m across) for 0.5 s, checked at each frame, at most max_duration; the movie then "
-                    "ends 0.5 s after the last piece comes to rest",
+                    "has been at rest for 0.5 s (its centre no faster than the rest speed between frames, and no point "
+                    "of it farther than the rest speed x 0.5 s from where it was; the rest speed 0.02 m/s, or 0.04 "
+                    "object sizes per second for an object over 0.5 m across), checked at each frame, at most "
+                    "max_duration; the movie then ends 0.5 s after the last piece comes to rest",
                     read_duration)
                  .json([](const Shot& s, ojson& j) {
                      j["duration"] = s.simulate.auto_duration ? ojson("auto") : ojson(s.simulate.duration);

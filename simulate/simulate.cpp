@@ -344,24 +344,31 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     out.energy.push_back(run.books());
 
     const uint32_t frames = frame_count(in.simulate);
-    // duration = "auto": the fastest point of each piece between the last two recorded frames
-    // ((|dx| + angle r) x fps) against the rest speed. The recorded motion, not the velocities of the
-    // frame's last step: a piece resting on others jitters at a few cm/s while it stays put.
+    // duration = "auto": each piece's centre between two recorded frames against the rest speed,
+    // and how far its farthest point got from where it was at the hold's first frame (|dx| +
+    // angle r) against the rest speed times the hold. The recorded motion, not the velocities of
+    // the frame's last step, and the turn over the hold, not between two frames: a piece resting
+    // on others trembles in place (measured on the demo: a piece turning back and forth at 0.2
+    // rad/s for 2 s, 0.14 degrees in all).
     std::vector<double> radius(world.pieces(), 0.0);
     for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
     const double rest = rest_speed(model, in.scene.gravity.norm());
-    auto at_rest = [&](uint32_t f) {
+    const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
+    // Every dynamic piece stayed within reach of its pose at frame `from` up to frame `to`.
+    auto stayed = [&](uint32_t from, uint32_t to) {
         for (uint32_t i = 0; i < world.pieces(); ++i) {
             if (!world.piece_dynamic(i)) continue;
-            const BodyPose &a = t.pose(f - 1, i), &b = t.pose(f, i);
-            const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
-            if (!(((b.position - a.position).cast<double>().norm() + angle * radius[i]) * in.simulate.fps < rest))
-                return false;
+            const BodyPose& a = t.pose(from, i);
+            for (uint32_t g = from + 1; g <= to; ++g) {
+                const BodyPose& b = t.pose(g, i);
+                const double step = (b.position - t.pose(g - 1, i).position).cast<double>().norm();
+                if (!(step * in.simulate.fps < rest)) return false;
+                const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
+                if (!((b.position - a.position).cast<double>().norm() + angle * radius[i] < rest * kRestHold)) return false;
+            }
         }
         return true;
     };
-    const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
-    uint32_t still = 0;  // frames in a row at rest
     Progress progress("simulate", frames - 1);
     bool fine = false;  // substeps = "auto": the next block runs in fine steps
     auto after_step = [&] {
@@ -401,12 +408,9 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         record(world, t);
         out.energy.push_back(run.books());
         progress.advance();
-        if (in.simulate.auto_duration) {
-            still = at_rest(f) ? still + 1 : 0;
-            if (still >= hold_frames) {
-                out.rest_time = (f - still) / in.simulate.fps;
-                break;
-            }
+        if (in.simulate.auto_duration && f >= hold_frames && stayed(f - hold_frames, f)) {
+            out.rest_time = (f - hold_frames) / in.simulate.fps;
+            break;
         }
     }
     t.complete = out.complete;

@@ -165,10 +165,13 @@ inline constexpr uint32_t kAutoMaxSplit = 4096;   // fine steps per block, at mo
 // [lowest, highest] (rad/s; BulletWorld::joint_frequencies): 1 with no joints.
 uint32_t auto_split(double block, double highest, double lowest, bool direct_joints, double max_cfm);
 
-// duration = "auto": a piece is at rest when no point of it moved faster than the rest speed
-// between the last two recorded frames ((|dx| + angle r) x fps, r its radius about its centre of
-// mass, from the poses the trajectory keeps); the simulation ends once every dynamic piece has
-// been at rest for kRestHold, checked at frame boundaries (deterministic), or at max_duration.
+// duration = "auto": the pieces are at rest over a hold of kRestHold when no dynamic piece's
+// centre moved faster than the rest speed between two of its frames and no point of any got
+// farther than the rest speed times kRestHold from where it was at the hold's first frame
+// (|dx| + angle r, r its radius about its centre of mass; from the poses the trajectory keeps):
+// a piece trembling in place rests, one falling, creeping or turning further does not.
+// The simulation ends at the end of the first such hold, checked at frame boundaries
+// (deterministic), or at max_duration.
 // The rest speed is kRestSpeed, or kRestSpeedPerSize times the object's size (the diagonal of its
 // bounding box) when that is more: a 5 m object creeping at 5 cm/s moves less than half a pixel
 // a frame in a movie that frames it, and is still to the eye. But never more than a quarter of

@@ -27,17 +27,18 @@ SimulationInput dropped_plate() {
 
 Model plate() { return box_grid(4, 1, 4, 0.05, Vec3(-0.1, 0, -0.1), 2400, 2); }
 
-// The fastest point of any piece between frames f - 1 and f, from the recorded poses (unit: m/s).
-double frame_speed(const Model& m, const Trajectory& t, uint32_t f) {
-    double fastest = 0;
+// How far the farthest point of any piece got between frames `from` and f, from the recorded
+// poses (unit: m).
+double reach(const Model& m, const Trajectory& t, uint32_t from, uint32_t f) {
+    double farthest = 0;
     for (uint32_t i = 0; i < t.pieces; ++i) {
         double r = 0;
         for (const Vec3& v : m.pieces[i].surface.vertices) r = std::max(r, (v - m.pieces[i].mass.center).norm());
-        const BodyPose &a = t.pose(f - 1, i), &b = t.pose(f, i);
+        const BodyPose &a = t.pose(from, i), &b = t.pose(f, i);
         const double angle = 2 * std::acos(std::min(1.0, double(std::abs(a.rotation.dot(b.rotation)))));
-        fastest = std::max(fastest, ((b.position - a.position).norm() + angle * r) * t.fps);
+        farthest = std::max(farthest, (b.position - a.position).norm() + angle * r);
     }
-    return fastest;
+    return farthest;
 }
 
 TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
@@ -48,14 +49,22 @@ TEST(AutoDuration, EndsAHoldAfterThePiecesRest) {
     // It lands at 0.25 s and needs time to settle; it rests well before the 6 s cap.
     ASSERT_GT(r.rest_time, 0.25);
     EXPECT_LT(t.frames(), frame_count(dropped_plate().simulate));
-    // The last frame is kRestHold (15 frames at 30 fps) after the last frame with motion.
+    // The last frame is kRestHold (15 frames at 30 fps) after the hold's first.
     const uint32_t hold = uint32_t(std::lround(kRestHold * t.fps));
     EXPECT_NEAR((t.frames() - 1) / t.fps, r.rest_time + kRestHold, 1e-9);
-    // Over the hold, the recorded poses barely move: at most the rest speed (kRestSpeed for this
-    // 0.28 m plate) at every point of every piece; the frame before the hold moved more.
+    // Over the hold, no point of any piece gets farther than the rest speed times the hold (1 cm:
+    // kRestSpeed for this 0.28 m plate) from where it was at the hold's start; the hold a frame
+    // earlier did not stay that close, or a centre moved faster than the rest speed in it.
     ASSERT_EQ(rest_speed(m, 9.81), kRestSpeed);
-    for (uint32_t f = t.frames() - hold; f < t.frames(); ++f) EXPECT_LT(frame_speed(m, t, f), kRestSpeed) << f;
-    EXPECT_GE(frame_speed(m, t, t.frames() - hold - 1), kRestSpeed);
+    const uint32_t start = t.frames() - 1 - hold;
+    for (uint32_t f = start + 1; f < t.frames(); ++f) EXPECT_LT(reach(m, t, start, f), kRestSpeed * kRestHold) << f;
+    double earlier = 0, fastest = 0;
+    for (uint32_t f = start; f < t.frames() - 1; ++f) {
+        earlier = std::max(earlier, reach(m, t, start - 1, f));
+        for (uint32_t i = 0; i < t.pieces; ++i)
+            fastest = std::max(fastest, double((t.pose(f, i).position - t.pose(f - 1, i).position).norm()) * t.fps);
+    }
+    EXPECT_TRUE(earlier >= kRestSpeed * kRestHold || fastest >= kRestSpeed) << earlier << " m, " << fastest << " m/s";
     // The settings remember "auto" and the cap; the same inputs give the same bytes.
     EXPECT_NE(t.settings_json.find("\"duration\":\"auto\""), std::string::npos) << t.settings_json;
     EXPECT_EQ(encode_trajectory(simulate(m, dropped_plate(), "test").trajectory), encode_trajectory(t));
