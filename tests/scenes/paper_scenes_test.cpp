@@ -92,12 +92,17 @@ TEST(PaperScenes, ThePorcelainChainSnapsOnceAndItsLinksRecoilWithAlphaTimesTheSt
         EXPECT_EQ(r.breaks.size(), 1u) << "the chain broke in more than one place";
         EXPECT_EQ(fragments(model, r), 2u);
         const BreakRecord& b = r.breaks.front();
-        EXPECT_NEAR(b.time, t_break, 0.02) << "alpha " << alpha;
+        // The joints solved exactly (joints = "direct") carry one tension: the break comes when the
+        // quasi-static stretch says, within 1 ms.
+        EXPECT_NEAR(b.time, t_break, 0.001) << "alpha " << alpha;
         EXPECT_NEAR(b.kicks.stored_energy, f * f / (2 * k), 0.1 * f * f / (2 * k));
-        // The chain lay still (its ends are driven; the links only stretch), so what the links move
-        // with right after the break is what it gave back: about alpha E, growing with alpha.
+        // The chain lay still (its ends are driven; the links only stretch): the kick gives the
+        // links alpha E (the books, above). The broken joint is the one to an end cube, and the last
+        // link, kicked, turns into the cube it was joined to, which takes about two thirds of it
+        // within a millisecond (docs/physics.md section 4): a frame later the links keep less
+        // than alpha E, more with every step of alpha.
         const double after = kinetic_at(r, b.time);
-        EXPECT_GT(after, previous + 0.3 * b.kicks.stored_energy) << "alpha " << alpha;
+        EXPECT_GT(after, previous + 0.1 * b.kicks.stored_energy) << "alpha " << alpha;
         EXPECT_LT(after, alpha * b.kicks.stored_energy + 0.01) << "alpha " << alpha;
         previous = after;
         // Recoil: the links still hang on the other end cube, and with alpha > 0 they spring back
