@@ -114,12 +114,8 @@ FemBeamResult run_fem_beam(uint32_t cells, double h, FemIntegrator integrator, d
         }
     }
     r.complete = std::isfinite(solid.kinetic_energy());
-    r.halved_steps = solid.halved_steps();
-    r.unconverged_steps = solid.unconverged_steps();
     if (r.first_break >= 0) r.at_05 = piece_motion(solid, in.split().vertex_piece, 0, in.split().pieces - 1);
-    for (const Tie& t : in.split().ties) r.broken += t.broken;
-    r.fragments = in.fragments();
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    tally_run(in, solid, t0, r);
     return r;
 }
 

@@ -103,11 +103,7 @@ FemChainResult run_fem_chain(uint32_t cells, double h, double h_after, double af
             if (r.first_separation < 0 || last < r.first_separation) r.first_separation = last;
         }
     }
-    for (const Tie& t : split.ties) r.broken += t.broken;
-    r.fragments = in.fragments();
-    r.halved_steps = solid.halved_steps();
-    r.unconverged_steps = solid.unconverged_steps();
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    tally_run(in, solid, t0, r);
     return r;
 }
 

@@ -16,6 +16,7 @@
 // stress cut-off; it is not a fracture-mechanics (energy release rate) criterion.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -71,5 +72,17 @@ public:
 private:
     SplitMesh s_;
 };
+
+// The closing tallies every reference run reports (FemBeamResult, FemChainResult, FemSceneResult):
+// ties broken, fragments, the steps Newton's method halved or left unconverged, and the wall time
+// since `start`.
+template <class Result>
+void tally_run(const Interfaces& in, const FemSolid& solid, std::chrono::steady_clock::time_point start, Result& r) {
+    for (const Tie& t : in.split().ties) r.broken += t.broken;
+    r.fragments = in.fragments();
+    r.halved_steps = solid.halved_steps();
+    r.unconverged_steps = solid.unconverged_steps();
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 }  // namespace shatter::fem

@@ -244,16 +244,12 @@ FemSceneResult run_fem_scene(const Model& model, const SceneSettings& scene, con
     r.at_05 = piece_motion(solid, split.vertex_piece, 0, split.pieces - 1);
     std::map<std::pair<uint32_t, uint32_t>, bool> all_broken;
     for (const Tie& t : split.ties) {
-        r.broken += t.broken;
         auto [it, fresh] = all_broken.emplace(std::make_pair(t.piece_a, t.piece_b), true);
         it->second = it->second && t.broken;
     }
     for (const auto& [pair, broken] : all_broken)
         if (broken) r.separated.push_back(pair);
-    r.fragments = in.fragments();
-    r.halved_steps = solid.halved_steps();
-    r.unconverged_steps = solid.unconverged_steps();
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    tally_run(in, solid, t0, r);
     return r;
 }
 
