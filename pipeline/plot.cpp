@@ -111,18 +111,21 @@ EnergySeries read_energy_csv(const std::string& path) {
     const char* fix = "give an energy CSV written by shatter simulate (OUT.energy.csv)";
     if (lines.empty()) throw_input_error(path, "empty energy CSV", fix);
     const std::vector<std::string> header = split(lines[0], ',');
-    // The last column is optional (older files have none).
-    const char* names[] = {"time_s", "kinetic_J", "potential_J", "stored_J", "injected_J", "elastic_J"};
-    size_t column[6];
-    int columns = 6;
-    for (int k = 0; k < 6; ++k) {
+    // The first five columns are needed; older files lack the later ones: elastic_J, then the
+    // books' other four (read only when all of them are there).
+    const char* names[] = {"time_s",     "kinetic_J", "potential_J",     "stored_J",   "injected_J",
+                           "elastic_J", "removed_J", "joints_damped_J", "contacts_J", "driven_J"};
+    constexpr int kNeeded = 5, kAll = 10;
+    size_t column[kAll];
+    int columns = kAll;
+    for (int k = 0; k < kAll; ++k) {
         auto it = std::find(header.begin(), header.end(), names[k]);
-        if (it == header.end() && k == 5) {
-            columns = 5;
+        if (it == header.end() && k < kNeeded)
+            throw_input_error(path + ":1", fmt::format("header '{}' has no column {}", lines[0], names[k]), fix);
+        if (it == header.end()) {
+            columns = k == kNeeded ? kNeeded : kNeeded + 1;
             break;
         }
-        if (it == header.end())
-            throw_input_error(path + ":1", fmt::format("header '{}' has no column {}", lines[0], names[k]), fix);
         column[k] = size_t(it - header.begin());
     }
     EnergySeries s;
@@ -133,39 +136,22 @@ EnergySeries read_energy_csv(const std::string& path) {
         if (fields.size() != header.size())
             throw_input_error(where, fmt::format("{} fields where the header has {}", fields.size(), header.size()),
                               fix);
+        double v[kAll];
         for (int k = 0; k < columns; ++k) {
             const std::string& f = fields[column[k]];
-            double v = 0;
-            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v))
+            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
+            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[k]))
                 throw_input_error(where, fmt::format("{} '{}' is not a finite number", names[k], f), fix);
-            series[k]->push_back(v);
+            if (k <= kNeeded) series[k]->push_back(v[k]);
+        }
+        if (columns == kAll) {
+            // kinetic + potential + elastic + removed + joints_damped + contacts - injected - driven
+            s.books.push_back(v[1] + v[2] + v[5] + v[6] + v[7] + v[8] - v[4] - v[9]);
+            s.lost.push_back(v[7] + v[8]);
+            s.driven.push_back(v[9]);
         }
     }
     if (s.t.empty()) throw_input_error(path, "the energy CSV has a header but no samples", fix);
-    // The books' other columns, when the file has them all.
-    const char* more[] = {"removed_J", "joints_damped_J", "contacts_J", "driven_J"};
-    size_t at[4];
-    for (int k = 0; k < 4; ++k) {
-        auto it = std::find(header.begin(), header.end(), more[k]);
-        if (it == header.end() || s.elastic.empty()) return s;
-        at[k] = size_t(it - header.begin());
-    }
-    for (size_t i = 1; i < lines.size(); ++i) {
-        const std::vector<std::string> fields = split(lines[i], ',');
-        double v[4];
-        for (int k = 0; k < 4; ++k) {
-            const std::string& f = fields[at[k]];
-            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
-            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[k]))
-                throw_input_error(fmt::format("{}:{}", path, i + 1), fmt::format("{} '{}' is not a finite number", more[k], f),
-                                  fix);
-        }
-        const size_t r = i - 1;
-        s.books.push_back(s.kinetic[r] + s.potential[r] + s.elastic[r] + v[0] + v[1] + v[2] - s.injected[r] - v[3]);
-        s.lost.push_back(v[1] + v[2]);
-        s.driven.push_back(v[3]);
-    }
     return s;
 }
 

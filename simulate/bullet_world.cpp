@@ -87,6 +87,11 @@ struct BulletWorld::Impl {
     bool residual_known = false;
     void account_step();
     static double joint_elastic(const Joint& j);  // k |d|^2 / 2 from the poses (unit: J)
+    // |f - (k d + c d')| / strength: the joint's force on A against its spring's (joint_residual).
+    static double spring_residual(const Joint& j, const Vec3& stretch, const Vec3& rate, const Vec3& force) {
+        const Vec3 spring = j.constraint->stiffness() * stretch + j.constraint->damping() * rate;
+        return (force - spring).norm() / j.strength;
+    }
     std::vector<std::unique_ptr<btCollisionShape>> shapes;
     std::vector<std::unique_ptr<btMotionState>> motions;
     std::vector<std::unique_ptr<btRigidBody>> bodies;
@@ -418,8 +423,7 @@ void BulletWorld::Impl::account_step() {
         if (j.strength > 0) {
             const Vec3 rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
                                        a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
-            const Vec3 spring = k.stiffness() * stretch + k.damping() * rate;
-            const double r = (to_eigen(force) - spring).norm() / j.strength;
+            const double r = spring_residual(j, stretch, rate, to_eigen(force));
             if (r > residual_max) residual_max = r, residual_worst = int64_t(c);
         }
         // The joint gave the pieces `pieces`, the drivers `drivers`, and stored e - elastic[c]:
@@ -783,11 +787,7 @@ double BulletWorld::kinetic_energy() const {
 }
 
 double BulletWorld::kinetic_energy_of_pair(size_t c, const Vec3& frame) const {
-    const auto& j = impl_->joints[c];
-    double e = 0;
-    for (uint32_t p : {j.piece_a, j.piece_b})
-        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body, frame);
-    return e;
+    return kinetic_energy_of({impl_->joints[c].piece_a, impl_->joints[c].piece_b}, frame);
 }
 
 double BulletWorld::kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame) const {
@@ -843,8 +843,7 @@ double BulletWorld::joint_residual(size_t c) const {
     const auto& j = impl_->joints[c];
     if (!j.active || !j.constraint || !(j.strength > 0)) return 0;
     const JointStretch s = joint_stretch(c);
-    const Vec3 spring = j.constraint->stiffness() * s.stretch + j.constraint->damping() * s.rate;
-    return (s.force_on_a - spring).norm() / j.strength;
+    return Impl::spring_residual(j, s.stretch, s.rate, s.force_on_a);
 }
 
 double BulletWorld::max_joint_residual(int64_t* worst) const {
@@ -863,10 +862,8 @@ double BulletWorld::max_joint_residual(int64_t* worst) const {
 
 double BulletWorld::elastic_energy() const {
     double e = 0;
-    for (size_t c = 0; c < impl_->joints.size(); ++c) {
-        const auto& j = impl_->joints[c];
-        if (j.active && j.constraint) e += 0.5 * j.constraint->stiffness() * joint_stretch(c).stretch.squaredNorm();
-    }
+    for (const auto& j : impl_->joints)
+        if (j.active && j.constraint) e += Impl::joint_elastic(j);
     return e;
 }
 
