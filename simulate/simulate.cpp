@@ -137,13 +137,13 @@ public:
         std::vector<Vec3> frames;
         std::vector<std::optional<BulletWorld::JoinedPieces>> joined(broken.size());
         for (size_t i = 0; i < broken.size(); ++i) {
-            Vec3 pivot;
-            const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(broken[i], &pivot);
             if (energize_.bodies == KickBodies::Joined) {
                 joined[i].emplace();
                 world_.joined_pieces(broken[i], kJoinedPiecesLimit, &*joined[i]);
                 frames.push_back(world_.centre_velocity(joined[i]->pieces));
             } else {
+                Vec3 pivot;
+                const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(broken[i], &pivot);
                 frames.push_back(pair_frame_velocity(now[0], now[1]));
             }
         }
