@@ -1,10 +1,11 @@
-// Render surfaces against tet surfaces, side by side in one run: the demo bunny (assets/bunny.toml,
-// prescored here: its pieces carry render surfaces) drawn over the render benchmark's synthetic
-// 60-frame trajectory at 1280x720 (shadows, 4x MSAA, PNG writing overlapped), once as before
-// (the render surfaces removed: each piece's tet surface, flat, unindexed) and once as render
-// draws them now (indexed, smooth per-vertex normals on the outer faces). Prints CSV; with an
-// output folder as argument, keeps frame 0 of each as tet.png and render.png there. Never fails
-// on time.
+// Render surfaces against tet surfaces, and the edge filter against 4x MSAA, side by side in one
+// run: the demo bunny (assets/bunny.toml, prescored here: its pieces carry render surfaces) drawn
+// over the render benchmark's synthetic 60-frame trajectory at 1280x720 (shadows, PNG writing
+// overlapped). Rows: "tet", the render surfaces removed (each piece's tet surface, flat,
+// unindexed), 4x MSAA; "render", the render surfaces (indexed, smooth per-vertex normals on the
+// outer faces), 4x MSAA; "render-msaa1", one sample per pixel and no filter; "render-filter", one
+// sample and the edge filter (the defaults). Prints CSV; with an output folder as argument, keeps
+// frame 0 of each as NAME.png there. Never fails on time.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -38,14 +39,24 @@ int main(int argc, char** argv) {
         return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
     };
     std::printf("surface,triangles,frames,seconds,fps,cpu_ms_per_frame\n");
-    for (const auto& [name, model] : {std::pair<const char*, const Model*>{"tet", &tet_model}, {"render", &render_model}}) {
+    struct Row {
+        const char* name;
+        const Model* model;
+        uint32_t msaa;  // samples per pixel
+        bool filter;    // the edge filter
+    };
+    for (const auto& [name, model, msaa, filter] : {Row{"tet", &tet_model, 4, false}, Row{"render", &render_model, 4, false},
+                                                    Row{"render-msaa1", &render_model, 1, false},
+                                                    Row{"render-filter", &render_model, 1, true}}) {
         RenderScene scene;
         scene.model = model;
         scene.trajectory = &trajectory;
         scene.scene = scene_settings;
         size_t triangles = 0;
         for (const Piece& p : model->pieces) triangles += p.render ? p.render->triangles.size() : p.surface.triangles.size();
-        RenderSettings s;  // 1280x720, shadows, 4x MSAA
+        RenderSettings s;  // 1280x720, shadows
+        s.msaa = msaa;
+        s.edge_filter = filter;
         RenderOptions options;
         options.progress = false;
         std::filesystem::remove_all(out);

@@ -1,6 +1,6 @@
 // Settings of render: the shot's [render] section (docs/shot.md) and the flags of
 // `shatter render`. Owned by the render stage's design (docs/render.md); defaults give a
-// 1280x720 review render with a shadowed key light and 4x MSAA. Colours are written as sRGB
+// 1280x720 review render with a shadowed key light, anti-aliased by the edge filter. Colours are written as sRGB
 // ("#rrggbb", as a colour picker shows them) and held here as linear RGB in [0, 1].
 #pragma once
 
@@ -38,7 +38,8 @@ struct RenderSettings {
     double fov = 35;                      // vertical field of view (unit: degrees)
     bool shadows = true;                  // the key light casts shadows (shadow map)
     uint32_t shadow_map = 1024;           // shadow map width and height (unit: texels)
-    uint32_t msaa = 4;                    // samples per pixel: 1 (off), 2 or 4
+    uint32_t msaa = 1;                    // samples per pixel: 1 (off), 2 or 4
+    bool edge_filter = true;              // anti-alias the finished image (render/edge_filter.h)
     double key_azimuth = -40;             // key light direction, from the camera's direction about +Y, positive to the right (unit: degrees)
     double key_elevation = 50;            // key light height above the horizon (unit: degrees)
     Colours colours = Colours::Input;

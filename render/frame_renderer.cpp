@@ -6,6 +6,7 @@
 #include <chrono>
 #include <map>
 
+#include "render/edge_filter.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
 #include "render/camera_path.h"
@@ -343,6 +344,11 @@ void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {
     target_.resolve(edges);
     target_.read(rgba);
     times_.readback = seconds_since(start);
+    if (settings_.edge_filter) {
+        start = std::chrono::steady_clock::now();
+        filter_edges(rgba, settings_.width, settings_.height);
+        times_.filter = seconds_since(start);
+    }
 }
 
 }  // namespace shatter

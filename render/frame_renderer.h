@@ -43,6 +43,7 @@ namespace shatter {
 struct FrameTimes {
     double draw = 0;      // submit + rasterize all passes (unit: s)
     double readback = 0;  // MSAA resolve and glReadPixels (unit: s)
+    double filter = 0;    // the edge filter (unit: s)
 };
 
 class FrameRenderer {

@@ -48,6 +48,7 @@ struct RenderReport {
     double seconds = 0;          // wall time of the whole loop (unit: s)
     double draw_seconds = 0;     // submitting and rasterizing (main thread; unit: s)
     double readback_seconds = 0; // glReadPixels (unit: s)
+    double filter_seconds = 0;   // the edge filter (main thread; unit: s)
     double encode_seconds = 0;   // PNG encoding (writer thread; unit: s)
     double write_seconds = 0;    // atomic file writes (writer thread; unit: s)
     std::string renderer;        // GL_RENDERER

@@ -66,6 +66,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
         renderer.render(f, rgba.data());
         report.draw_seconds += renderer.last_times().draw;
         report.readback_seconds += renderer.last_times().readback;
+        report.filter_seconds += renderer.last_times().filter;
         writer.push(std::move(rgba), path);
         if (progress) progress->advance();
         ++report.frames;

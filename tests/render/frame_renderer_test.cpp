@@ -50,6 +50,8 @@ TEST(FrameRenderer, MsaaAroundTheEdgesGivesTheAllMsaaFrameWithinALevel) {
     RenderSettings s = small_render_settings();
     s.width = 640;
     s.height = 360;
+    s.msaa = 4;
+    s.edge_filter = false;
     for (uint32_t f : {0u, 23u}) {
         const Image edges = render_one(t, s, f), everywhere = render_one(t, s, f, MsaaRegion::Everywhere);
         const DiffMetrics d = compare_images(edges, everywhere, 1);
