@@ -60,7 +60,7 @@ TEST(EnergyBooks, TheBeamsBooksCloseThroughItsBreaks) {
     const SimulationResult r = simulate(model, input_of(shot, 1.0, 0.45), "beam");
     ASSERT_EQ(r.breaks.size(), 4u);
     const Spread s = books_around_first_break(r);
-    EXPECT_LT(s.books, 0.05 * s.stored);
+    EXPECT_LT(s.books, 0.025 * s.stored);  // measured 1.7%
 }
 
 }  // namespace
