@@ -422,6 +422,16 @@ void PieceSolver::solveGroupCacheFriendlySplitImpulseIterations(btCollisionObjec
 btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                                     const btContactSolverInfo& info) {
     write_back_joints(info);
+    // A rolling or spinning friction row turns its two bodies about its axis: the angular impulse
+    // axis x impulse on A, the opposite on B (Bullet's setupTorsionalFrictionConstraint).
+    for (int j = 0; j < m_tmpSolverContactRollingFrictionConstraintPool.size(); ++j) {
+        const btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool[j];
+        if (row.m_appliedImpulse == btScalar(0)) continue;
+        const btRigidBody* a = m_tmpSolverBodyPool[row.m_solverBodyIdA].m_originalBody;
+        const btRigidBody* b = m_tmpSolverBodyPool[row.m_solverBodyIdB].m_originalBody;
+        if (a) rolling_.push_back({a, row.m_relpos1CrossNormal * row.m_appliedImpulse});
+        if (b) rolling_.push_back({b, row.m_relpos2CrossNormal * row.m_appliedImpulse});
+    }
     // Bullet's own write-back then has no joint rows left to visit; contacts and bodies as usual.
     m_tmpSolverNonContactConstraintPool.resizeNoInitialize(0);
     return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);

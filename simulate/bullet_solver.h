@@ -19,6 +19,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -53,9 +54,19 @@ public:
         max_iterations_ = max_iterations;
     }
     // Over the solves since reset_counts() (Bullet solves islands in batches, each its own call):
-    // the most iterations one took.
-    void reset_counts() { most_iterations_ = 0; }
+    // the most iterations one took, and the angular impulses of the contacts' rolling and
+    // spinning friction rows, which Bullet keeps nowhere after the solve (a manifold point holds
+    // only its normal and sliding friction impulses).
+    void reset_counts() {
+        most_iterations_ = 0;
+        rolling_.clear();
+    }
     int most_iterations() const { return most_iterations_; }
+    struct AngularImpulse {
+        const btRigidBody* body;  // a dynamic or kinematic body
+        btVector3 impulse;        // (unit: N m s)
+    };
+    const std::vector<AngularImpulse>& rolling_friction() const { return rolling_; }
 
 protected:
     btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
@@ -94,6 +105,7 @@ private:
     btAlignedObjectArray<btScalar> row_scale_;  // per joint row: 1 / (h CFM strength)
     btScalar joint_residual_ = 0;        // of the current iteration
     int most_iterations_ = 0;
+    std::vector<AngularImpulse> rolling_;
 };
 
 }  // namespace shatter

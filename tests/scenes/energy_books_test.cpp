@@ -47,7 +47,7 @@ TEST(EnergyBooks, TheChainsBooksCloseThroughItsBreak) {
         const SimulationResult r = simulate(model, input_of(shot, alpha, 0.45), "chain");
         ASSERT_FALSE(r.breaks.empty());
         const Spread s = books_around_first_break(r);
-        EXPECT_LT(s.books, 0.02 * s.stored) << "alpha " << alpha;
+        EXPECT_LT(s.books, 0.001 * s.stored) << "alpha " << alpha;  // measured 0.02% and 0.01%
         EXPECT_GT(s.without_joints, 5 * s.stored) << "alpha " << alpha;
         // The drives did the work the joints stored and then lost.
         EXPECT_GT(r.energy.back().driven, 5 * s.stored);
@@ -60,7 +60,18 @@ TEST(EnergyBooks, TheBeamsBooksCloseThroughItsBreaks) {
     const SimulationResult r = simulate(model, input_of(shot, 1.0, 0.45), "beam");
     ASSERT_EQ(r.breaks.size(), 4u);
     const Spread s = books_around_first_break(r);
-    EXPECT_LT(s.books, 0.025 * s.stored);  // measured 1.7%
+    EXPECT_LT(s.books, 0.01 * s.stored);  // measured 0.39%
+}
+
+// 360 breaks in 86 ms as the plate lands on the sphere, its cubes rolling and spinning on it and on
+// each other: the contacts' rolling and spinning friction booked with the sliding friction.
+TEST(EnergyBooks, ThePlatesBooksCloseThroughItsImpact) {
+    const Shot shot = asset("plate");
+    const Model model = prescore_shot(shot, nullptr);
+    const SimulationResult r = simulate(model, input_of(shot, 1.0, 0.45), "plate");
+    ASSERT_GT(r.breaks.size(), 300u);
+    const Spread s = books_around_first_break(r);
+    EXPECT_LT(s.books, 0.01 * s.stored);  // measured 0.09%
 }
 
 }  // namespace
