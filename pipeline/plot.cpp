@@ -59,7 +59,7 @@ if len(curves) == 1:
         ax.plot(c["t"], c["elastic"], color="C2", linestyle=":", label="elastic (constraints' stretch)")
     ax.plot(c["t"], c["injected"], color="C3", linestyle="--", label="injected (breaks)")
     if c["books"]:
-        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping and contacts")
+        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping, contacts and the step's gravity")
         if any(d != 0 for d in c["driven"]):
             ax.plot(c["t"], c["driven"], color="C5", linestyle="-.", label="given by driven pieces and props")
         b0 = c["books"][0]
@@ -112,10 +112,10 @@ EnergySeries read_energy_csv(const std::string& path) {
     if (lines.empty()) throw_input_error(path, "empty energy CSV", fix);
     const std::vector<std::string> header = split(lines[0], ',');
     // The first five columns are needed; older files lack the later ones: elastic_J, then the
-    // books' other four (read only when all of them are there).
-    const char* names[] = {"time_s",     "kinetic_J", "potential_J",     "stored_J",   "injected_J",
-                           "elastic_J", "removed_J", "joints_damped_J", "contacts_J", "driven_J"};
-    constexpr int kNeeded = 5, kAll = 10;
+    // books' other four (read only when all of them are there), then integration_J (0 without).
+    const char* names[] = {"time_s",    "kinetic_J", "potential_J",     "stored_J",   "injected_J", "elastic_J",
+                           "removed_J", "joints_damped_J", "contacts_J", "driven_J", "integration_J"};
+    constexpr int kNeeded = 5, kBooks = 10, kAll = 11;
     size_t column[kAll];
     int columns = kAll;
     for (int k = 0; k < kAll; ++k) {
@@ -123,7 +123,7 @@ EnergySeries read_energy_csv(const std::string& path) {
         if (it == header.end() && k < kNeeded)
             throw_input_error(path + ":1", fmt::format("header '{}' has no column {}", lines[0], names[k]), fix);
         if (it == header.end()) {
-            columns = k == kNeeded ? kNeeded : kNeeded + 1;
+            columns = k == kNeeded ? kNeeded : k < kBooks ? kNeeded + 1 : kBooks;
             break;
         }
         column[k] = size_t(it - header.begin());
@@ -144,10 +144,12 @@ EnergySeries read_energy_csv(const std::string& path) {
                 throw_input_error(where, fmt::format("{} '{}' is not a finite number", names[k], f), fix);
             if (k <= kNeeded) series[k]->push_back(v[k]);
         }
-        if (columns == kAll) {
-            // kinetic + potential + elastic + removed + joints_damped + contacts - injected - driven
-            s.books.push_back(v[1] + v[2] + v[5] + v[6] + v[7] + v[8] - v[4] - v[9]);
-            s.lost.push_back(v[7] + v[8]);
+        if (columns >= kBooks) {
+            // kinetic + potential + elastic + removed + joints_damped + contacts + integration -
+            // injected - driven
+            const double integration = columns == kAll ? v[10] : 0.0;
+            s.books.push_back(v[1] + v[2] + v[5] + v[6] + v[7] + v[8] + integration - v[4] - v[9]);
+            s.lost.push_back(v[7] + v[8] + integration);
             s.driven.push_back(v[9]);
         }
     }

@@ -90,7 +90,7 @@ struct BulletWorld::Impl {
     double residual_max = 0;
     int64_t residual_worst = -1;
     bool residual_known = false;
-    void account_step();
+    void account_step(double h);  // after a step of h (unit: s)
     static double joint_elastic(const Joint& j);  // k |d|^2 / 2 from the poses (unit: J)
     // |f - (k d + c d')| / strength: the joint's force on A against its spring's (joint_residual).
     static double spring_residual(const Joint& j, const Vec3& stretch, const Vec3& rate, const Vec3& force) {
@@ -380,7 +380,7 @@ void BulletWorld::step() {
     for (size_t i = 0; i < m.bodies.size(); ++i)
         m.before[i] = {m.bodies[i]->getLinearVelocity(), m.bodies[i]->getAngularVelocity(), m.bodies[i]->getWorldTransform()};
     m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
-    m.account_step();
+    m.account_step(setup_.h);
     release_parted_pairs();
 }
 
@@ -400,7 +400,7 @@ btVector3 mean_velocity(const btRigidBody& b, const btVector3& linear, const btV
 
 }  // namespace
 
-void BulletWorld::Impl::account_step() {
+void BulletWorld::Impl::account_step(double h_step) {
     residual_max = 0;
     residual_worst = -1;
     // Work of the impulse P on body b at point p: a dynamic piece's, or a driven one's (a driven
@@ -456,6 +456,13 @@ void BulletWorld::Impl::account_step() {
             work.contacts += -(pieces + drivers);
             work.driven -= drivers;
         }
+    }
+    // Gravity's integration (StepWork::integration).
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        const btRigidBody& b = *bodies[i];
+        if (b.isStaticOrKinematicObject() || !(b.getInvMass() > 0)) continue;
+        const btVector3 dv = b.getLinearVelocity() - before[i].linear;
+        work.integration += 0.5 * h_step / double(b.getInvMass()) * double(b.getGravity().dot(dv));
     }
     // The contacts' rolling and spinning friction: angular impulses T, each doing T . (mean
     // angular velocity) on its body.

@@ -182,6 +182,12 @@ public:
         double contacts = 0;
         // Given to the dynamic pieces by driven pieces and props, through joints and contacts (unit: J).
         double driven = 0;
+        // What the time step's integration of gravity takes from kinetic + potential energy: a
+        // step moves a body by h v1 (symplectic Euler), so its potential energy changes by
+        // -m g . h v1 while gravity's work on its motion is m g . h (v0 + v1) / 2 less the
+        // impulses' share; the difference is m h g . (v1 - v0) / 2 (unit: J). In free fall
+        // m |g|^2 h^2 / 2 a step; at an impact, m h g . dv / 2 for the impact's change of velocity.
+        double integration = 0;
     };
     StepWork step_work() const;
     Vec3 linear_momentum() const;     // (unit: kg m/s)

@@ -45,11 +45,11 @@ std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
 std::string energy_csv(const std::vector<EnergySample>& samples) {
     std::string out =
         "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J,elastic_J,joint_residual,joints_damped_J,contacts_J,"
-        "driven_J\n";
+        "driven_J,integration_J\n";
     for (const EnergySample& e : samples)
-        out += fmt::format("{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{:.9g},{:.9g},{:.9g}\n", e.time,
+        out += fmt::format("{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.4g},{:.9g},{:.9g},{:.9g},{:.9g}\n", e.time,
                            e.kinetic, e.potential, e.stored, e.injected, e.removed, e.elastic, e.residual,
-                           e.joints_damped, e.contacts, e.driven);
+                           e.joints_damped, e.contacts, e.driven, e.integration);
     return out;
 }
 

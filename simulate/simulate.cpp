@@ -182,7 +182,7 @@ public:
         const EnergySample e{world_.time(),        world_.kinetic_energy(), world_.potential_energy(),
                              world_.stored_energy(), injected_,              removed_,
                              world_.elastic_energy(), frame_residual_,       w.joints,
-                             w.contacts,             w.driven};
+                             w.contacts,             w.driven,               w.integration};
         frame_residual_ = 0;
         return e;
     }

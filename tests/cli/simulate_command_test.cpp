@@ -36,7 +36,7 @@ TEST(SimulateCommand, WritesTrajectoryBreakLogAndEnergyAndSaysSo) {
     EXPECT_TRUE(t.complete);
     const std::string energy = slurp(dir.file("out/cube.energy.csv"));
     EXPECT_EQ(energy.substr(0, energy.find('\n')), "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J,elastic_J,joint_residual,"
-                                                      "joints_damped_J,contacts_J,driven_J");
+                                                      "joints_damped_J,contacts_J,driven_J,integration_J");
     EXPECT_NE(r.out.find("wrote:"), std::string::npos);
     EXPECT_NE(r.out.find("cube.breaks.jsonl"), std::string::npos);
 }
