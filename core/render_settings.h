@@ -1,7 +1,7 @@
 // Settings of render: the shot's [render] section (docs/shot.md) and the flags of
 // `shatter render`. Owned by the render stage's design (docs/render.md); defaults give a
-// 1280x720 review render with a shadowed key light, anti-aliased by the edge filter. Colours are written as sRGB
-// ("#rrggbb", as a colour picker shows them) and held here as linear RGB in [0, 1].
+// 1280x720 review render with a shadowed key light, anti-aliased by the edge filter. Colours are
+// written as sRGB ("#rrggbb", as a colour picker shows them) and held here as linear RGB in [0, 1].
 #pragma once
 
 #include <array>

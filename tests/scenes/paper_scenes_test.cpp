@@ -81,9 +81,10 @@ TEST(PaperScenes, ThePorcelainChainSnapsOnceAndItsLinksRecoilWithAlphaTimesTheSt
     const Shot shot = asset("chain");
     ASSERT_GT(shot.simulate.rate_limit, 0);
     const Model model = prescore_shot(shot, nullptr);
-    // Porcelain joints (k = stiffness A, breaking force F = strength A): the ten joints in series
-    // reach F after the ends have moved apart by 11 F / k, i.e. 0.19 mm at 1.1 cm/s each: about
-    // 9 ms after the drive starts at 0.3 s. Each joint then stores F^2 / 2k.
+    // Porcelain joints (k = stiffness A, breaking force F = strength A): the eleven joints in
+    // series reach F after the ends have moved apart by 11 F / k, i.e. 0.19 mm at 1.1 cm/s each:
+    // about 9 ms after the drive starts at 0.3 s. Each joint then stores F^2 / 2k.
+    ASSERT_EQ(shot.material.preset, "porcelain");
     const double area = model.constraints.front().area;
     const double k = shot.material.stiffness * area, f = shot.material.strength * area;
     const double links = double(model.constraints.size());
@@ -145,6 +146,7 @@ TEST(PaperScenes, ThePlasterPlateShattersOverTheSphereAndItsCubesFlyApart) {
     ASSERT_EQ(model.pieces.size(), 25u);
     // The impact's stress in a cube that the sphere stops, v sqrt(E rho) with E = stiffness x l,
     // is several times the strength: every joint of the middle cube (12) must break.
+    ASSERT_EQ(shot.material.preset, "gypsum_plaster");
     const double l = model.pieces[1].mass.center.x() - model.pieces[0].mass.center.x();
     const double v = std::sqrt(2 * 9.81 * 0.48), rho = model.density;
     ASSERT_GT(v * std::sqrt(shot.material.stiffness * l * rho), 3 * shot.material.strength);
