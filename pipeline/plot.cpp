@@ -59,7 +59,7 @@ if len(curves) == 1:
         ax.plot(c["t"], c["elastic"], color="C2", linestyle=":", label="elastic (constraints' stretch)")
     ax.plot(c["t"], c["injected"], color="C3", linestyle="--", label="injected (breaks)")
     if c["books"]:
-        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping, contacts and the step's gravity")
+        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping, contacts and the step's integration")
         if any(d != 0 for d in c["driven"]):
             ax.plot(c["t"], c["driven"], color="C5", linestyle="-.", label="given by driven pieces and props")
         b0 = c["books"][0]

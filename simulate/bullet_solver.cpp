@@ -432,6 +432,12 @@ btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, 
         if (a) rolling_.push_back({a, row.m_relpos1CrossNormal * row.m_appliedImpulse});
         if (b) rolling_.push_back({b, row.m_relpos2CrossNormal * row.m_appliedImpulse});
     }
+    if (info.m_splitImpulse)
+        for (int i = 0; i < m_tmpSolverBodyPool.size(); ++i) {
+            const btSolverBody& body = m_tmpSolverBodyPool[i];
+            if (body.m_originalBody && !body.m_pushVelocity.isZero())
+                pushes_.push_back({body.m_originalBody, body.m_pushVelocity});
+        }
     // Bullet's own write-back then has no joint rows left to visit; contacts and bodies as usual.
     m_tmpSolverNonContactConstraintPool.resizeNoInitialize(0);
     return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);

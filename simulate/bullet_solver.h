@@ -57,9 +57,12 @@ public:
     // the most iterations one took, and the angular impulses of the contacts' rolling and
     // spinning friction rows, which Bullet keeps nowhere after the solve (a manifold point holds
     // only its normal and sliding friction impulses).
+    // And the split impulse's pushes: each body's push velocity, by which the step moves it out of
+    // penetration (position only).
     void reset_counts() {
         most_iterations_ = 0;
         rolling_.clear();
+        pushes_.clear();
     }
     int most_iterations() const { return most_iterations_; }
     struct AngularImpulse {
@@ -67,6 +70,11 @@ public:
         btVector3 impulse;        // (unit: N m s)
     };
     const std::vector<AngularImpulse>& rolling_friction() const { return rolling_; }
+    struct Push {
+        const btRigidBody* body;  // a dynamic body
+        btVector3 velocity;       // moves its centre of mass by velocity h (unit: m/s)
+    };
+    const std::vector<Push>& pushes() const { return pushes_; }
 
 protected:
     btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
@@ -106,6 +114,7 @@ private:
     btScalar joint_residual_ = 0;        // of the current iteration
     int most_iterations_ = 0;
     std::vector<AngularImpulse> rolling_;
+    std::vector<Push> pushes_;
 };
 
 }  // namespace shatter

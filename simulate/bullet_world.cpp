@@ -84,6 +84,8 @@ struct BulletWorld::Impl {
     struct Before {
         btVector3 linear, angular;
         btTransform pose;
+        btMatrix3x3 inv_inertia;  // world frame
+        btVector3 gyroscopic;     // the step's change of angular velocity by Bullet's implicit gyroscopic term
     };
     std::vector<Before> before;
     // The largest joint residual after the last step and where, while nothing has changed since.
@@ -377,8 +379,12 @@ void BulletWorld::step() {
         m.elastic_known = true;
     }
     m.before.resize(m.bodies.size());
-    for (size_t i = 0; i < m.bodies.size(); ++i)
-        m.before[i] = {m.bodies[i]->getLinearVelocity(), m.bodies[i]->getAngularVelocity(), m.bodies[i]->getWorldTransform()};
+    for (size_t i = 0; i < m.bodies.size(); ++i) {
+        const btRigidBody& b = *m.bodies[i];
+        const bool gyroscopic = !b.isStaticOrKinematicObject() && (b.getFlags() & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+        m.before[i] = {b.getLinearVelocity(), b.getAngularVelocity(), b.getWorldTransform(), b.getInvInertiaTensorWorld(),
+                       gyroscopic ? b.computeGyroscopicImpulseImplicit_Body(btScalar(setup_.h)) : btVector3(0, 0, 0)};
+    }
     m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
     m.account_step(setup_.h);
     release_parted_pairs();
@@ -457,12 +463,23 @@ void BulletWorld::Impl::account_step(double h_step) {
             work.driven -= drivers;
         }
     }
-    // Gravity's integration (StepWork::integration).
+    // The step's integration (StepWork::integration): gravity's, and the turn's.
     for (size_t i = 0; i < bodies.size(); ++i) {
         const btRigidBody& b = *bodies[i];
         if (b.isStaticOrKinematicObject() || !(b.getInvMass() > 0)) continue;
-        const btVector3 dv = b.getLinearVelocity() - before[i].linear;
+        const Before& start = before[i];
+        const btVector3 dv = b.getLinearVelocity() - start.linear;
         work.integration += 0.5 * h_step / double(b.getInvMass()) * double(b.getGravity().dot(dv));
+        const btVector3& w1 = b.getAngularVelocity();
+        const btVector3 mean = 0.5 * (w1 + start.angular);
+        const btMatrix3x3 inertia0 = start.inv_inertia.inverse(), inertia1 = b.getInvInertiaTensorWorld().inverse();
+        work.integration -= 0.5 * double(w1.dot((inertia1 - inertia0) * w1)) + double(mean.dot(inertia0 * start.gyroscopic));
+    }
+    // The contacts' pushes out of penetration (split impulse): a body moved by dx gains potential
+    // energy -m g . dx that no impulse gave (its joints' stretch goes to their column above).
+    for (const PieceSolver::Push& p : solver.pushes()) {
+        if (p.body->isStaticOrKinematicObject() || !(p.body->getInvMass() > 0)) continue;
+        work.contacts += double(p.body->getGravity().dot(p.velocity)) * h_step / double(p.body->getInvMass());
     }
     // The contacts' rolling and spinning friction: angular impulses T, each doing T . (mean
     // angular velocity) on its body.

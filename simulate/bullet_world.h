@@ -178,15 +178,20 @@ public:
         // Taken from the pieces' motion by the joints and not stored in their stretch: their
         // damping and the implicit step's (a stiff joint at omega h >> 1 relaxes without ringing).
         double joints = 0;    // (unit: J)
-        // Taken by contacts: friction and inelastic impacts (unit: J).
+        // Taken by contacts: friction and inelastic impacts, less the potential energy their
+        // pushes out of penetration gave (unit: J).
         double contacts = 0;
         // Given to the dynamic pieces by driven pieces and props, through joints and contacts (unit: J).
         double driven = 0;
-        // What the time step's integration of gravity takes from kinetic + potential energy: a
-        // step moves a body by h v1 (symplectic Euler), so its potential energy changes by
-        // -m g . h v1 while gravity's work on its motion is m g . h (v0 + v1) / 2 less the
-        // impulses' share; the difference is m h g . (v1 - v0) / 2 (unit: J). In free fall
-        // m |g|^2 h^2 / 2 a step; at an impact, m h g . dv / 2 for the impact's change of velocity.
+        // What the time step's integration takes from kinetic + potential energy (unit: J). Of
+        // gravity: a step moves a body by h v1 (symplectic Euler), so its potential energy changes
+        // by -m g . h v1 while gravity's work on its motion is m g . h (v0 + v1) / 2 less the
+        // impulses' share; the difference is m h g . (v1 - v0) / 2 (in free fall m |g|^2 h^2 / 2 a
+        // step; at an impact, m h g . dv / 2 for the impact's change of velocity). Of the turn: a
+        // body's kinetic energy is w . I w / 2 with its inertia I in the world frame, which turns
+        // with it, and Bullet's implicit gyroscopic term changes w by dw_g within the step: the
+        // energy changes by w1 . (I1 - I0) w1 / 2 + wm . I0 dw_g that no impulse accounts for
+        // (wm the mean of w0 and w1).
         double integration = 0;
     };
     StepWork step_work() const;

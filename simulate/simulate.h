@@ -71,8 +71,8 @@ struct EnergySample {
     // stretch's, over the strength) in the steps since the previous sample (unit: 1)
     double residual = 0;
     // So far: taken from the pieces' motion by the joints' damping and the implicit step,
-    // taken by contacts, given by driven pieces and props, and taken by the step's integration of
-    // gravity (BulletWorld::StepWork). With them the books close: kinetic + potential + elastic +
+    // taken by contacts, given by driven pieces and props, and taken by the step's integration
+    // (BulletWorld::StepWork). With them the books close: kinetic + potential + elastic +
     // removed + joints_damped + contacts + integration - injected - driven stays constant
     // (docs/physics.md, "The books").
     double joints_damped = 0;
