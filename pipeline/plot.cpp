@@ -83,15 +83,6 @@ fig.tight_layout()
 fig.savefig(sys.argv[1], format="png", dpi=100, metadata={"Software": None})
 )PY";
 
-struct EnergySeries {
-    std::vector<double> t, kinetic, potential, stored, injected;
-    std::vector<double> elastic;  // empty in files of older versions
-    // kinetic + potential + elastic + removed + joints_damped + contacts - injected - driven,
-    // joints_damped + contacts, and driven (docs/physics.md section 5c); empty in files of older
-    // versions.
-    std::vector<double> books, lost, driven;
-};
-
 std::vector<std::string> split(const std::string& line, char sep) {
     std::vector<std::string> out(1);
     for (char c : line) {
@@ -103,9 +94,9 @@ std::vector<std::string> split(const std::string& line, char sep) {
     return out;
 }
 
-// An energy CSV of simulate (simulate/recording.cpp): columns found by name in the header.
-EnergySeries read_energy_csv(const std::string& path) {
-    const std::string text = read_file(path, "energy CSV");
+}  // namespace
+
+EnergySeries parse_energy_csv(const std::string& text, const std::string& path) {
     std::vector<std::string> lines = split(text, '\n');
     if (!lines.empty() && lines.back().empty()) lines.pop_back();
     const char* fix = "give an energy CSV written by shatter simulate (OUT.energy.csv)";
@@ -156,6 +147,10 @@ EnergySeries read_energy_csv(const std::string& path) {
     if (s.t.empty()) throw_input_error(path, "the energy CSV has a header but no samples", fix);
     return s;
 }
+
+namespace {
+
+EnergySeries read_energy_csv(const std::string& path) { return parse_energy_csv(read_file(path, "energy CSV"), path); }
 
 std::string plot_input(const std::vector<EnergyCurve>& curves, const std::string& title) {
     nlohmann::json j = {{"title", title}, {"curves", nlohmann::json::array()}};

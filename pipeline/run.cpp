@@ -536,6 +536,10 @@ std::string format_run_summary(const RunResult& r) {
                                alpha * stored > 0
                                    ? fmt::format(" ({:.3f} x alpha x stored)", (injected + held) / (alpha * stored))
                                    : std::string());
+        if (sim.contains("energy_books_drift_J"))
+            out += fmt::format("energy:   kinetic + potential + elastic + removed + damped + contacts + integration - "
+                               "injected - driven stays within {:.2g} J over the run (OUT.energy.png)\n",
+                               sim["energy_books_drift_J"].get<double>());
         out += format_instability(r.summary.at("instability"));
     }
     out += fmt::format("results:  {}/\n", r.output_dir);

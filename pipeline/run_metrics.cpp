@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/fragments.h"
+#include "pipeline/plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,6 +101,13 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     j["peak_piece_speed_m_per_s"] = peak_speed;
     j["joint_residual_max"] = residual ? json(*residual) : json(nullptr);
     j["joint_residual_frame_s"] = residual_at ? json(*residual_at) : json(nullptr);
+    // How far the energy books (docs/physics.md section 5c) moved over the run: round-off when
+    // every term is counted; absent from files of older versions.
+    const EnergySeries energy = parse_energy_csv(energy_csv_text, "energy CSV");
+    if (!energy.books.empty()) {
+        const auto [lo, hi] = std::minmax_element(energy.books.begin(), energy.books.end());
+        j["energy_books_drift_J"] = *hi - *lo;
+    }
     return j;
 }
 

@@ -14,6 +14,8 @@
 #include <map>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "support/cube_shot.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
@@ -59,6 +61,13 @@ TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
     EXPECT_FALSE(fs::exists(fs::path(out) / "frames/frame_00016.png"));  // 0.5 s at 30 fps: 16 frames
     EXPECT_NE(r.out.find("stages:"), std::string::npos);
     EXPECT_NE(r.out.find("results:"), std::string::npos);
+    // The energy books close to round-off over the whole run (the drop gives ~1 J), and the summary
+    // says so.
+    const nlohmann::json summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+    const nlohmann::json& sim = summary.at("simulation");
+    ASSERT_TRUE(sim.contains("energy_books_drift_J")) << sim.dump();
+    EXPECT_LT(sim["energy_books_drift_J"].get<double>(), 1e-6) << sim.dump();
+    EXPECT_NE(r.out.find("energy:   kinetic + potential"), std::string::npos) << r.out;
     const std::string log = slurp(out + "/run.log");
     EXPECT_NE(log.find("simulate: ran"), std::string::npos) << log;
 
