@@ -159,6 +159,10 @@ uint32_t frame_count(const SimulateSettings& s);
 // joints no more than keeps every row's CFM within max_cfm. Blocks stay fine until one ends with
 // no break and every joint's force under kAutoCalmLoad of its strength.
 inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
+// A run at a fixed step that breaks nothing while its stiffest joint has omega h above this is
+// warned about: an impact's peak force is then resolved to about 1 / (omega h) of itself
+// (docs/physics.md section 7), so a stiff material may not break where it should.
+inline constexpr double kStiffStepWarning = 10;   // (unit: 1)
 inline constexpr double kAutoRefineLoad = 0.5;    // of a joint's strength
 inline constexpr double kAutoCalmLoad = 0.25;     // of a joint's strength
 inline constexpr double kAutoOmegaH = 2.5;        // (unit: 1)

@@ -79,6 +79,23 @@ TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
     EXPECT_EQ(folder_bytes(out), before);
 }
 
+// A material too strong for the drop breaks nothing; at the shot's step (h = 1/240 s) its joints'
+// omega h is far above 1, so the impact's force was resolved to a fraction of its peak, and the
+// run says which settings resolve it. The weak cube breaks and is told nothing.
+TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
+    TempDir dir;
+    const std::string shot = write_cube_shot(dir);
+    auto weak = run_shatter({"run", shot, "-o", dir.file("weak"), "--no-progress", "--stages", "prescore,simulate"});
+    ASSERT_EQ(weak.exit_code, 0) << weak.out << weak.err;
+    EXPECT_EQ((weak.out + weak.err).find("no joint broke"), std::string::npos) << weak.out << weak.err;
+    auto strong = run_shatter({"run", shot, "-o", dir.file("strong"), "--no-progress", "--stages", "prescore,simulate",
+                               "--set", "material.strength=1e9"});
+    ASSERT_EQ(strong.exit_code, 0) << strong.out << strong.err;
+    const std::string said = strong.out + strong.err;
+    EXPECT_NE(said.find("no joint broke"), std::string::npos) << said;
+    EXPECT_NE(said.find("substeps = \"auto\" and joints = \"direct\""), std::string::npos) << said;
+}
+
 TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
     TempDir dir;
     const std::string shot = write_cube_shot(dir);
