@@ -41,18 +41,14 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     }
     const size_t fragments = count_fragments(model, broken);
 
+    const EnergySeries energy = parse_energy_csv(energy_csv_text, "energy CSV");
     // Kinetic energy 0.1 s after the first break, from the energy books.
     std::optional<double> kinetic_after;
     if (first_break >= 0) {
-        std::istringstream rows(energy_csv_text);
-        std::string row;
-        std::getline(rows, row);  // header
         double best = 1e300;
-        while (std::getline(rows, row)) {
-            double t = 0, k = 0;
-            if (std::sscanf(row.c_str(), "%lf,%lf", &t, &k) != 2) continue;
-            if (std::abs(t - (first_break + 0.1)) < best) best = std::abs(t - (first_break + 0.1)), kinetic_after = k;
-        }
+        for (size_t i = 0; i < energy.t.size(); ++i)
+            if (std::abs(energy.t[i] - (first_break + 0.1)) < best)
+                best = std::abs(energy.t[i] - (first_break + 0.1)), kinetic_after = energy.kinetic[i];
     }
     // The largest joint residual of any step (the energy books' joint_residual column, each row
     // the largest of its frame's steps) and when; absent from files of older versions.
@@ -103,7 +99,6 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     j["joint_residual_frame_s"] = residual_at ? json(*residual_at) : json(nullptr);
     // How far the energy books (docs/physics.md section 5c) moved over the run: round-off when
     // every term is counted; absent from files of older versions.
-    const EnergySeries energy = parse_energy_csv(energy_csv_text, "energy CSV");
     if (!energy.books.empty()) {
         const auto [lo, hi] = std::minmax_element(energy.books.begin(), energy.books.end());
         j["energy_books_drift_J"] = *hi - *lo;

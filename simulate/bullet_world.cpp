@@ -409,15 +409,19 @@ btVector3 mean_velocity(const btRigidBody& b, const btVector3& linear, const btV
 void BulletWorld::Impl::account_step(double h_step) {
     residual_max = 0;
     residual_worst = -1;
-    // Work of the impulse P on body b at point p: a dynamic piece's, or a driven one's (a driven
-    // piece or prop, whose motion is scripted; static bodies do not move).
-    auto work_of = [&](const btRigidBody& b, const btVector3& p, const btVector3& impulse, double* on_pieces,
-                       double* on_drivers) {
+    // Work w done on body b, added to a dynamic piece's sum or a driven one's (a driven piece or
+    // prop, whose motion is scripted); static bodies do not move.
+    auto add_work = [](const btRigidBody& b, double w, double* on_pieces, double* on_drivers) {
         // (A body of zero mass is flagged static even when it is kinematic.)
         if (b.isStaticObject() && !b.isKinematicObject()) return;
-        const Before& start = before[size_t(b.getUserIndex2())];
-        const double w = double(impulse.dot(mean_velocity(b, start.linear, start.angular, start.pose.getOrigin(), p)));
         *(b.isKinematicObject() ? on_drivers : on_pieces) += w;
+    };
+    // The work of the impulse P on body b at point p.
+    auto work_of = [&](const btRigidBody& b, const btVector3& p, const btVector3& impulse, double* on_pieces,
+                       double* on_drivers) {
+        const Before& start = before[size_t(b.getUserIndex2())];
+        add_work(b, double(impulse.dot(mean_velocity(b, start.linear, start.angular, start.pose.getOrigin(), p))),
+                 on_pieces, on_drivers);
     };
     for (size_t c = 0; c < joints.size(); ++c) {
         Joint& j = joints[c];
@@ -484,11 +488,11 @@ void BulletWorld::Impl::account_step(double h_step) {
     // The contacts' rolling and spinning friction: angular impulses T, each doing T . (mean
     // angular velocity) on its body.
     for (const PieceSolver::AngularImpulse& t : solver.rolling_friction()) {
-        if (t.body->isStaticObject() && !t.body->isKinematicObject()) continue;
         const Before& start = before[size_t(t.body->getUserIndex2())];
-        const double w = double(t.impulse.dot(0.5 * (t.body->getAngularVelocity() + start.angular)));
-        work.contacts -= w;
-        if (t.body->isKinematicObject()) work.driven -= w;
+        double pieces = 0, drivers = 0;
+        add_work(*t.body, double(t.impulse.dot(0.5 * (t.body->getAngularVelocity() + start.angular))), &pieces, &drivers);
+        work.contacts += -(pieces + drivers);
+        work.driven -= drivers;
     }
     residual_known = true;
 }
