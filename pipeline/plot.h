@@ -7,20 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace shatter {
+#include "pipeline/energy_csv.h"
 
-// The series of an energy CSV of simulate (simulate/recording.cpp), columns found by name.
-struct EnergySeries {
-    std::vector<double> t, kinetic, potential, stored, injected;
-    std::vector<double> elastic;  // empty in files of older versions
-    // kinetic + potential + elastic + removed + joints_damped + contacts + integration - injected
-    // - driven (constant: docs/physics.md section 5c); joints_damped + contacts + integration; and
-    // driven. Empty in files of older versions (integration counted as 0 where it is missing).
-    std::vector<double> books, lost, driven;
-};
-// Parses the CSV's text; `where` names it in errors. Throws Error(BadInput) with where:line for a
-// malformed file.
-EnergySeries parse_energy_csv(const std::string& text, const std::string& where);
+namespace shatter {
 
 struct EnergyCurve {
     std::string label;     // legend entry, e.g. "alpha = 0.5"

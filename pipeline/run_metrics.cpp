@@ -2,7 +2,7 @@
 
 #include "core/error.h"
 #include "core/fragments.h"
-#include "pipeline/plot.h"
+#include "pipeline/energy_csv.h"
 
 #include <algorithm>
 #include <cmath>
