@@ -1,5 +1,7 @@
 #include "simulate/bullet_solver.h"
 
+#include <algorithm>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -16,10 +18,42 @@ namespace shatter {
 // pieces, not of the rows: a pair of pieces shares dozens of rows).
 struct PieceSolver::Direct {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-    Eigen::VectorXd residual, correction, body_rhs;
+    Eigen::VectorXd body_rhs;  // scratch: the moving bodies' velocity changes
     std::vector<double> inv_cfm;      // 1 / C per row
     std::vector<int> body_index;      // per solver body, its first unknown in G, or -1 (not moving)
     bool ok = false;
+    // G's 6 x 6 blocks: one per moving body (its diagonal) and one per pair of moving bodies that
+    // a joint row joins (first unknown lower), in the order first met; reused from step to step.
+    struct Block {
+        int row, col;
+        Eigen::Matrix<double, 6, 6> value;
+    };
+    std::vector<Block> blocks;
+    std::unordered_map<uint64_t, size_t> block_of;  // (row, col) -> index in blocks
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::SparseMatrix<double> G;
+    // Per moving body (unknowns 6 k to 6 k + 5): its solver body and its mass block M_k.
+    std::vector<int> bodies;
+    std::vector<Eigen::Matrix<double, 6, 6>> mass;
+    // In the bodies' space: J^T C^-1 b (b_r = rhs_r / jacDiagABInv_r, constant within the step),
+    // and the joints' impulses J^T l and J^T l_push as they stand.
+    Eigen::VectorXd rhs_body, impulse, push_impulse;
+    // u + z of the last solve on the velocities, which the rows' impulses stand for (valid when
+    // have_last): a row's correction in the next solve is -C^-1 J (u' - last_u).
+    Eigen::VectorXd last_u;
+    bool have_last = false;
+    // G's sparsity pattern at the last analysis: a step with the same pattern (no joint broke or
+    // woke) only refactors.
+    std::vector<int> outer, inner;
+    // True when G's pattern (outer, inner) is the one analysed last; records it otherwise.
+    bool ok_pattern(const int* o, int no, const int* i, int ni) {
+        if (int(outer.size()) == no && int(inner.size()) == ni && std::equal(o, o + no, outer.begin()) &&
+            std::equal(i, i + ni, inner.begin()))
+            return true;
+        outer.assign(o, o + no);
+        inner.assign(i, i + ni);
+        return false;
+    }
 };
 
 PieceSolver::PieceSolver() : direct_system_(std::make_unique<Direct>()) {}
@@ -90,7 +124,9 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
     btScalar residual = 0;
     const auto add = [&residual](btScalar r) { residual = btMax(residual, r * r); };
     if (direct_ && direct_system_->ok) {
-        add(solve_joints_directly());
+        // The rows' own impulses are needed where the convergence is checked (from the step's last
+        // own iteration on) and where the iterations stop without a check.
+        add(solve_joints_directly(false, extra_ || !(tolerance_ > 0) || iteration + 1 >= own_iterations_));
     } else if (tolerance_ > 0) {
         btScalar most = 0;
         for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
@@ -109,10 +145,21 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
         }
     }
     if (iteration >= info.m_numIterations && !extra_) return residual;
-    for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j)
-        add(solve_row(m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]], false));
+    // Past the step's own iterations, with direct joints, only the contacts of jointed pieces are
+    // iterated further: the iterations that follow are there to converge the joints, and the
+    // contacts of fragments without joints (most of a pile after the impact) have had the step's
+    // own iterations, as with iterative joints.
+    const std::vector<int>* joined = extra_ && direct_ && direct_system_->ok ? &direct_system_->body_index : nullptr;
+    const auto skip = [joined](const btSolverConstraint& row) {
+        return joined && (*joined)[size_t(row.m_solverBodyIdA)] < 0 && (*joined)[size_t(row.m_solverBodyIdB)] < 0;
+    };
+    for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j) {
+        btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
+        if (!skip(row)) add(solve_row(row, false));
+    }
     for (int j = 0; j < m_tmpSolverContactFrictionConstraintPool.size(); ++j) {
         btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[j]];
+        if (skip(row)) continue;
         const btScalar normal = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
         if (normal > btScalar(0)) {
             row.m_lowerLimit = -(row.m_friction * normal);
@@ -122,6 +169,7 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
     }
     for (int j = 0; j < m_tmpSolverContactRollingFrictionConstraintPool.size(); ++j) {
         btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool[j];
+        if (skip(row)) continue;
         const btScalar normal = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
         if (normal > btScalar(0)) {
             btScalar bound = row.m_friction * normal;
@@ -159,7 +207,6 @@ Vec6 row_jacobian(const btSolverConstraint& c, bool on_a) {
 void PieceSolver::factor_joints() {
     const int n = m_tmpSolverNonContactConstraintPool.size();
     Direct& d = *direct_system_;
-    d.residual.resize(n);
     d.inv_cfm.assign(size_t(n), 0.0);
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
@@ -186,106 +233,170 @@ void PieceSolver::factor_body_space() {
         for (int id : {row.m_solverBodyIdA, row.m_solverBodyIdB})
             if (d.body_index[size_t(id)] < 0 && moving(id)) d.body_index[size_t(id)] = unknowns, unknowns += 6;
     }
-    std::vector<Eigen::Triplet<double>> entries;
+    // G = M + sum over rows of w J_r^T J_r, summed in 6 x 6 blocks (a pair of pieces shares
+    // dozens of rows) and handed to Eigen as one triplet per non-zero entry of a block.
+    d.blocks.clear();
+    d.block_of.clear();
+    d.bodies.assign(size_t(unknowns / 6), -1);
+    d.mass.resize(size_t(unknowns / 6));
     for (int id = 0; id < m_tmpSolverBodyPool.size(); ++id) {
         const int k = d.body_index[size_t(id)];
         if (k < 0) continue;
         const btSolverBody& body = m_tmpSolverBodyPool[id];
-        for (int i = 0; i < 3; ++i) entries.emplace_back(k + i, k + i, 1.0 / double(body.internalGetInvMass()[i]));
+        Eigen::Matrix<double, 6, 6> m = Eigen::Matrix<double, 6, 6>::Zero();
+        for (int i = 0; i < 3; ++i) m(i, i) = 1.0 / double(body.internalGetInvMass()[i]);
         const btMatrix3x3 inertia = body.m_originalBody->getInvInertiaTensorWorld().inverse();
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) entries.emplace_back(k + 3 + i, k + 3 + j, double(inertia[i][j]));
+            for (int j = 0; j < 3; ++j) m(3 + i, 3 + j) = double(inertia[i][j]);
+        d.block_of.emplace((uint64_t(uint32_t(k)) << 32) | uint32_t(k), d.blocks.size());
+        d.blocks.push_back({k, k, m});
+        d.bodies[size_t(k / 6)] = id;
+        d.mass[size_t(k / 6)] = m;
     }
+    const auto block = [&d](int row, int col) -> Eigen::Matrix<double, 6, 6>& {
+        const uint64_t key = (uint64_t(uint32_t(row)) << 32) | uint32_t(col);
+        auto [it, added] = d.block_of.emplace(key, d.blocks.size());
+        if (added) d.blocks.push_back({row, col, Eigen::Matrix<double, 6, 6>::Zero()});
+        return d.blocks[it->second].value;
+    };
     for (int r = 0; r < n; ++r) {
         const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[r];
         const double w = d.inv_cfm[size_t(r)];
-        const int at[2] = {d.body_index[size_t(row.m_solverBodyIdA)], d.body_index[size_t(row.m_solverBodyIdB)]};
-        const Vec6 jac[2] = {row_jacobian(row, true), row_jacobian(row, false)};
-        for (int x = 0; x < 2; ++x)
-            for (int y = 0; y < 2; ++y) {
-                if (at[x] < 0 || at[y] < 0) continue;
-                for (int i = 0; i < 6; ++i)
-                    for (int j = 0; j < 6; ++j)
-                        if (jac[x][i] != 0 && jac[y][j] != 0)
-                            entries.emplace_back(at[x] + i, at[y] + j, w * jac[x][i] * jac[y][j]);
+        int at[2] = {d.body_index[size_t(row.m_solverBodyIdA)], d.body_index[size_t(row.m_solverBodyIdB)]};
+        Vec6 jac[2] = {row_jacobian(row, true), row_jacobian(row, false)};
+        if (at[1] >= 0 && (at[0] < 0 || at[1] < at[0])) {
+            std::swap(at[0], at[1]);
+            std::swap(jac[0], jac[1]);
+        }
+        if (at[0] < 0) continue;
+        block(at[0], at[0]).noalias() += w * jac[0] * jac[0].transpose();
+        if (at[1] < 0) continue;
+        if (at[1] == at[0]) {  // a row with both ends on one body
+            block(at[0], at[0]).noalias() += w * (jac[0] * jac[1].transpose() + jac[1] * jac[0].transpose() +
+                                                  jac[1] * jac[1].transpose());
+            continue;
+        }
+        block(at[1], at[1]).noalias() += w * jac[1] * jac[1].transpose();
+        block(at[0], at[1]).noalias() += w * jac[0] * jac[1].transpose();
+    }
+    d.entries.clear();
+    for (const Direct::Block& b : d.blocks)
+        for (int i = 0; i < 6; ++i)
+            for (int j = 0; j < 6; ++j) {
+                const double v = b.value(i, j);
+                if (v == 0) continue;
+                d.entries.emplace_back(b.row + i, b.col + j, v);
+                if (b.row != b.col) d.entries.emplace_back(b.col + j, b.row + i, v);
+            }
+    Eigen::SparseMatrix<double>& G = d.G;
+    G.resize(unknowns, unknowns);
+    G.setFromTriplets(d.entries.begin(), d.entries.end());
+    const bool same_pattern =
+        d.ok_pattern(G.outerIndexPtr(), G.outerSize() + 1, G.innerIndexPtr(), int(G.nonZeros()));
+    if (!same_pattern) d.ldlt.analyzePattern(G);
+    d.ldlt.factorize(G);
+    d.ok = d.ldlt.info() == Eigen::Success;
+    // The right-hand side's constant part and the joints' impulses, in the bodies' space.
+    d.rhs_body.setZero(unknowns);
+    d.impulse.setZero(unknowns);
+    d.push_impulse.setZero(unknowns);
+    d.have_last = false;
+    for (int r = 0; r < n; ++r) {
+        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
+        const double b = d.inv_cfm[size_t(r)] * double(c.m_rhs / c.m_jacDiagABInv);
+        const double l = double(c.m_appliedImpulse);
+        for (bool on_a : {true, false})
+            if (const int k = d.body_index[size_t(on_a ? c.m_solverBodyIdA : c.m_solverBodyIdB)]; k >= 0) {
+                const Vec6 j = row_jacobian(c, on_a);
+                d.rhs_body.segment<6>(k) += b * j;
+                d.impulse.segment<6>(k) += l * j;
             }
     }
-    Eigen::SparseMatrix<double> G(unknowns, unknowns);
-    G.setFromTriplets(entries.begin(), entries.end());
-    d.ldlt.compute(G);
-    d.ok = d.ldlt.info() == Eigen::Success;
     d.body_rhs.resize(unknowns);
 }
 
-btScalar PieceSolver::solve_joints_directly(bool push) {
+// One exact solve of the joint rows with the contacts' impulses held, carried out in the bodies'
+// space. With u the moving bodies' velocity changes (or push velocities), a row's equation
+// b - C l - J u = 0 (C = cfm / jacDiagABInv, b = rhs / jacDiagABInv; no b for the pushes) has,
+// for the rows together, the correction dl = C^-1 (r - J z), r = b - C l - J u, z = G^-1 J^T C^-1 r
+// (Woodbury, G = M + J^T C^-1 J). After it the rows hold l' = C^-1 (b - J (u + z)), and
+//   J^T C^-1 r = J^T C^-1 b - J^T l - A u  (A = G - M),    J^T l' = J^T l + M z:
+// the bodies' velocities change by z. The iteration needs one sparse product and one solve in
+// the bodies' space; one pass over the rows sets each row's l' (for the write-back and the books)
+// and finds the largest correction.
+btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
     Direct& d = *direct_system_;
     const int n = m_tmpSolverNonContactConstraintPool.size();
-    for (int r = 0; r < n; ++r) {
-        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-        btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
-        btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
-        if (push) {  // the same rows with no right-hand side: joined pieces move together
-            const btScalar jv = c.m_contactNormal1.dot(a.m_pushVelocity) + c.m_relpos1CrossNormal.dot(a.m_turnVelocity) +
-                                c.m_contactNormal2.dot(b.m_pushVelocity) + c.m_relpos2CrossNormal.dot(b.m_turnVelocity);
-            d.residual[r] = c.m_jacDiagABInv != 0
-                                ? double(-btScalar(c.m_appliedPushImpulse) * c.m_cfm / c.m_jacDiagABInv - jv)
-                                : 0.0;
-            continue;
+    const int unknowns = int(d.bodies.size()) * 6;
+    Eigen::VectorXd& held = push ? d.push_impulse : d.impulse;
+    // u, the moving bodies' velocity changes (or push velocities)
+    Eigen::VectorXd& u = d.body_rhs;
+    u.resize(unknowns);
+    for (size_t i = 0; i < d.bodies.size(); ++i) {
+        const btSolverBody& body = m_tmpSolverBodyPool[d.bodies[i]];
+        const btVector3& lin = push ? body.m_pushVelocity : body.m_deltaLinearVelocity;
+        const btVector3& ang = push ? body.m_turnVelocity : body.m_deltaAngularVelocity;
+        u.segment<6>(Eigen::Index(6 * i)) << lin[0], lin[1], lin[2], ang[0], ang[1], ang[2];
+    }
+    // A u = G u - M u
+    Eigen::VectorXd rhs = d.G * u;
+    for (size_t i = 0; i < d.bodies.size(); ++i)
+        rhs.segment<6>(Eigen::Index(6 * i)).noalias() -= d.mass[i] * u.segment<6>(Eigen::Index(6 * i));
+    if (push)
+        rhs = -rhs - held;
+    else
+        rhs = d.rhs_body - held - rhs;
+    const Eigen::VectorXd z = d.ldlt.solve(rhs);
+    // Since G z = J^T C^-1 r, the new impulses J^T l' = held + M z: the bodies' velocities change
+    // by z.
+    for (size_t i = 0; i < d.bodies.size(); ++i) {
+        btSolverBody& body = m_tmpSolverBodyPool[d.bodies[i]];
+        const Eigen::Index k = Eigen::Index(6 * i);
+        const btVector3 lin(z[k], z[k + 1], z[k + 2]), ang(z[k + 3], z[k + 4], z[k + 5]);
+        if (push) {
+            body.m_pushVelocity += lin;
+            body.m_turnVelocity += ang;
+        } else {
+            body.internalGetDeltaLinearVelocity() += lin;
+            body.internalGetDeltaAngularVelocity() += ang;
         }
-        const btScalar jv = c.m_contactNormal1.dot(a.internalGetDeltaLinearVelocity()) +
-                            c.m_relpos1CrossNormal.dot(a.internalGetDeltaAngularVelocity()) +
-                            c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) +
-                            c.m_relpos2CrossNormal.dot(b.internalGetDeltaAngularVelocity());
-        d.residual[r] = c.m_jacDiagABInv != 0
-                            ? double((c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm) / c.m_jacDiagABInv - jv)
-                            : 0.0;
+        held.segment<6>(k).noalias() += d.mass[i] * z.segment<6>(k);
     }
-    // K^-1 r = C^-1 (r - J G^-1 J^T C^-1 r)
-    d.body_rhs.setZero();
-    for (int r = 0; r < n; ++r) {
-        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-        const double wr = d.inv_cfm[size_t(r)] * d.residual[r];
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-            d.body_rhs.segment<6>(k) += wr * row_jacobian(c, true);
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-            d.body_rhs.segment<6>(k) += wr * row_jacobian(c, false);
+    u += z;  // the velocities the rows' new impulses leave
+    if (push) return 0;  // the rows' push impulses are not read: J^T l_push is kept
+    if (!rows) {
+        d.last_u = u;
+        d.have_last = true;
+        return 0;
     }
-    const Eigen::VectorXd z = d.ldlt.solve(d.body_rhs);
-    d.correction.resize(n);
-    for (int r = 0; r < n; ++r) {
-        const btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-        double jz = 0;
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0)
-            jz += row_jacobian(c, true).dot(z.segment<6>(k));
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0)
-            jz += row_jacobian(c, false).dot(z.segment<6>(k));
-        d.correction[r] = d.inv_cfm[size_t(r)] * (d.residual[r] - jz);
-    }
+    // Each row's own impulse l' = C^-1 (b - J (u + z)), and the largest correction.
+    if (d.have_last)
+        d.last_u = u - d.last_u;  // now the change since the last solve
+    else
+        d.last_u.setZero(u.size());
     btScalar largest = 0, most = 0;
-    if (push) {
-        for (int r = 0; r < n; ++r) {
-            btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-            const btScalar delta = btScalar(d.correction[r]);
-            c.m_appliedPushImpulse = btScalar(c.m_appliedPushImpulse) + delta;
-            m_tmpSolverBodyPool[c.m_solverBodyIdA].internalApplyPushImpulse(
-                c.m_contactNormal1 * m_tmpSolverBodyPool[c.m_solverBodyIdA].internalGetInvMass(), c.m_angularComponentA, delta);
-            m_tmpSolverBodyPool[c.m_solverBodyIdB].internalApplyPushImpulse(
-                c.m_contactNormal2 * m_tmpSolverBodyPool[c.m_solverBodyIdB].internalGetInvMass(), c.m_angularComponentB, delta);
-            if (c.m_jacDiagABInv != 0) largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
-        }
-        return largest;
-    }
     for (int r = 0; r < n; ++r) {
         btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-        const btScalar delta = btScalar(d.correction[r]);
-        c.m_appliedImpulse = btScalar(c.m_appliedImpulse) + delta;
-        btSolverBody& a = m_tmpSolverBodyPool[c.m_solverBodyIdA];
-        btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
-        a.internalApplyImpulse(c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
-        b.internalApplyImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
-        if (c.m_jacDiagABInv != 0) largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
+        double ju = 0, jdu = 0;
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0) {
+            const Vec6 j = row_jacobian(c, true);
+            ju += j.dot(u.segment<6>(k));
+            jdu += j.dot(d.last_u.segment<6>(k));
+        }
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0) {
+            const Vec6 j = row_jacobian(c, false);
+            ju += j.dot(u.segment<6>(k));
+            jdu += j.dot(d.last_u.segment<6>(k));
+        }
+        const double w = d.inv_cfm[size_t(r)];
+        const btScalar l = btScalar(w * (double(c.m_rhs / c.m_jacDiagABInv) - ju));
+        const btScalar delta = d.have_last ? btScalar(-w * jdu) : l - c.m_appliedImpulse;
+        c.m_appliedImpulse = l;
+        largest = btMax(largest, btFabs(delta / c.m_jacDiagABInv));
         if (tolerance_ > 0 && r < row_scale_.size()) most = btMax(most, btFabs(delta) * row_scale_[r]);
     }
+    d.last_u = u;
+    d.have_last = true;
     joint_residual_ = most;
     return largest;
 }
@@ -341,6 +452,7 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
                                                         btTypedConstraint** constraints, int numConstraints,
                                                         const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
     const int own = btMax(m_maxOverrideNumSolverIterations, info.m_numIterations);
+    own_iterations_ = own;
     most_iterations_ = btMax(most_iterations_, own);
     direct_system_->ok = false;
     if (direct_ && m_tmpSolverNonContactConstraintPool.size() > 0) factor_joints();
@@ -396,6 +508,7 @@ void PieceSolver::solveGroupCacheFriendlySplitImpulseIterations(btCollisionObjec
     if (!pushing) return;
     for (int r = 0; r < joints; ++r) m_tmpSolverNonContactConstraintPool[r].m_appliedPushImpulse = 0;
     const bool direct = direct_ && direct_system_->ok;
+    if (direct) direct_system_->push_impulse.setZero();
     for (int iteration = 0; iteration < info.m_numIterations; ++iteration) {
         for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j) {
             const btSolverConstraint& c = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];

@@ -99,8 +99,9 @@ private:
     void factor_joints();
     void factor_body_space();
     // One direct solve of every joint row, on the velocities (or on the push velocities); the
-    // largest correction (residual).
-    btScalar solve_joints_directly(bool push = false);
+    // largest correction (residual). `rows`: set each row's impulse and measure the correction
+    // (else 0 is returned and the rows catch up at the next solve that sets them).
+    btScalar solve_joints_directly(bool push = false, bool rows = true);
     struct Direct;
     std::unique_ptr<Direct> direct_system_;
     bool direct_ = false;
@@ -110,6 +111,7 @@ private:
     double tolerance_ = 0;
     int max_iterations_ = 0;
     bool extra_ = false;                 // in the iterations past the step's own count
+    int own_iterations_ = 0;             // the step's own count
     btAlignedObjectArray<btScalar> row_scale_;  // per joint row: 1 / (h CFM strength)
     btScalar joint_residual_ = 0;        // of the current iteration
     int most_iterations_ = 0;
