@@ -1,5 +1,6 @@
 #include "core/shot.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -99,6 +100,15 @@ Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::
     root.insert_or_assign("mesh", toml::table{});
     Shot shot = read_shot(root, "", overrides);
     if (shot.mesh.path.empty()) shot.mesh.path = mesh_path;
+    const auto overridden = [&overrides](const char* key) {
+        return std::any_of(overrides.begin(), overrides.end(),
+                           [key](const std::string& o) { return o.rfind(key, 0) == 0; });
+    };
+    if (shot.material.youngs_modulus && *shot.material.youngs_modulus >= kStiffMaterialModulus &&
+        !overridden("simulate.substeps=") && !overridden("simulate.joints=")) {
+        shot.simulate.auto_substeps = true;
+        shot.simulate.joints = JointSolve::Direct;
+    }
     return shot;
 }
 

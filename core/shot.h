@@ -54,8 +54,12 @@ bool is_shot_path(const std::string& path);
 extern const char* const kDefaultShot;
 
 // The default shot on `mesh_path` (taken relative to the current folder), with `overrides`
-// applied as load_shot applies them.
+// applied as load_shot applies them. A real material (Young's modulus of at least
+// kStiffMaterialModulus, by a preset or the key) gets the automatic step and direct joints
+// (substeps = "auto", joints = "direct") unless the overrides set either: its joints are too stiff
+// for the default step to resolve an impact (docs/shot.md, "Material presets").
 Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides = {});
+inline constexpr double kStiffMaterialModulus = 1e9;  // (unit: Pa)
 
 // load_shot for a shot file (.toml), default_shot_for_mesh for anything else.
 Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides = {});

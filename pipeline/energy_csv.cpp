@@ -48,6 +48,7 @@ EnergySeries parse_energy_csv(const std::string& text, const std::string& path) 
         }
         column[k] = size_t(it - header.begin());
     }
+    const auto residual_column = std::find(header.begin(), header.end(), "joint_residual");
     EnergySeries s;
     std::vector<double>* series[] = {&s.t, &s.kinetic, &s.potential, &s.stored, &s.injected, &s.elastic};
     for (size_t i = 1; i < lines.size(); ++i) {
@@ -63,6 +64,14 @@ EnergySeries parse_energy_csv(const std::string& text, const std::string& path) 
             if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[k]))
                 throw_input_error(where, fmt::format("{} '{}' is not a finite number", names[k], f), fix);
             if (k <= kNeeded) series[k]->push_back(v[k]);
+        }
+        if (residual_column != header.end()) {
+            const std::string& f = fields[size_t(residual_column - header.begin())];
+            double r = 0;
+            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), r);
+            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(r))
+                throw_input_error(where, fmt::format("joint_residual '{}' is not a finite number", f), fix);
+            s.joint_residual.push_back(r);
         }
         if (columns >= kBooks) {
             // kinetic + potential + elastic + removed + joints_damped + contacts + integration -

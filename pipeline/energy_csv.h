@@ -15,6 +15,9 @@ struct EnergySeries {
     // - driven (constant: docs/physics.md section 5c); joints_damped + contacts + integration; and
     // driven. Empty in files of older versions (integration counted as 0 where it is missing).
     std::vector<double> books, lost, driven;
+    // The largest joint residual of the frame's steps (docs/physics.md section 5a); empty in files
+    // of older versions.
+    std::vector<double> joint_residual;
 };
 // Parses the CSV's text; `where` names it in errors. Throws Error(BadInput) with where:line for a
 // malformed file.

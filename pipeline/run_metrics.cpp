@@ -53,26 +53,8 @@ nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& tr
     // The largest joint residual of any step (the energy books' joint_residual column, each row
     // the largest of its frame's steps) and when; absent from files of older versions.
     std::optional<double> residual, residual_at;
-    {
-        std::istringstream rows(energy_csv_text);
-        std::string row;
-        std::getline(rows, row);
-        int column = -1, at = 0;
-        for (size_t start = 0, end; start <= row.size(); start = end + 1, ++at) {
-            end = std::min(row.find(',', start), row.size());
-            if (row.compare(start, end - start, "joint_residual") == 0) column = at;
-        }
-        while (column > 0 && std::getline(rows, row)) {
-            std::istringstream cells(row);
-            std::string cell;
-            double t = 0, r = 0;
-            for (int i = 0; std::getline(cells, cell, ','); ++i) {
-                if (i == 0) t = std::strtod(cell.c_str(), nullptr);
-                if (i == column) r = std::strtod(cell.c_str(), nullptr);
-            }
-            if (!residual || r > *residual) residual = r, residual_at = t;
-        }
-    }
+    for (size_t i = 0; i < energy.joint_residual.size(); ++i)
+        if (!residual || energy.joint_residual[i] > *residual) residual = energy.joint_residual[i], residual_at = energy.t[i];
     // Peak piece speed between recorded frames.
     double peak_speed = 0;
     for (uint32_t f = 1; f < traj.frames(); ++f)

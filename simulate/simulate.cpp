@@ -421,7 +421,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         spdlog::warn("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = {:.0f}: "
                      "an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md section 7). For "
                      "a stiff material, [simulate] substeps = \"auto\" and joints = \"direct\" resolve it (glmark2's "
-                     "bunny in porcelain, dropped 1.5 m: 58 breaks, 23 s for the whole job)",
+                     "bunny in porcelain, dropped 1.5 m: 59 breaks, 11 s for the whole job)",
                      h, stiffest * h, stiffest * h);
     // Before the first break, a structure under load should hold forces its stretch explains;
     // an impact's pushes (docs/physics.md section 5a) are not the solve's to fix.
