@@ -25,7 +25,7 @@ TEST(AutoStep, TheFineStepIsThePowerOfTwoThatResolvesTheStiffestJointWithinMaxCf
 
 // The plaster plate dropped on the sphere: the same breaks, the first within a frame, the cubes'
 // kinetic energy 0.1 s after the first break within 10% of the fixed step's, over the shot's 1.5 s
-// in an eighth of its 45,000 steps or fewer (measured: 4,104); every break from a fine step
+// in an eighth of its 45,000 steps or fewer (measured: 3,366); every break from a fine step
 // (shorter than the probe's block).
 TEST(AutoStep, ThePlateReproducesItsFixedStepInAnEighthOfTheSteps) {
     const Shot shot = asset("plate");
