@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "core/setting_table.h"
@@ -108,6 +109,10 @@ Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::
         !overridden("simulate.substeps=") && !overridden("simulate.joints=")) {
         shot.simulate.auto_substeps = true;
         shot.simulate.joints = JointSolve::Direct;
+        spdlog::info("auto: [simulate] substeps = \"auto\", joints = \"direct\" (Young's modulus {:g} Pa: a real "
+                     "material's joints are too stiff for the default shot's fixed step to resolve an impact; "
+                     "--set simulate.substeps=N keeps a fixed step)",
+                     *shot.material.youngs_modulus);
     }
     return shot;
 }
