@@ -57,22 +57,21 @@ EnergySeries parse_energy_csv(const std::string& text, const std::string& path) 
         if (fields.size() != header.size())
             throw_input_error(where, fmt::format("{} fields where the header has {}", fields.size(), header.size()),
                               fix);
+        const auto number = [&](size_t at, const char* name) {
+            const std::string& f = fields[at];
+            double v = 0;
+            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v))
+                throw_input_error(where, fmt::format("{} '{}' is not a finite number", name, f), fix);
+            return v;
+        };
         double v[kAll];
         for (int k = 0; k < columns; ++k) {
-            const std::string& f = fields[column[k]];
-            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
-            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[k]))
-                throw_input_error(where, fmt::format("{} '{}' is not a finite number", names[k], f), fix);
+            v[k] = number(column[k], names[k]);
             if (k <= kNeeded) series[k]->push_back(v[k]);
         }
-        if (residual_column != header.end()) {
-            const std::string& f = fields[size_t(residual_column - header.begin())];
-            double r = 0;
-            auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), r);
-            if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(r))
-                throw_input_error(where, fmt::format("joint_residual '{}' is not a finite number", f), fix);
-            s.joint_residual.push_back(r);
-        }
+        if (residual_column != header.end())
+            s.joint_residual.push_back(number(size_t(residual_column - header.begin()), "joint_residual"));
         if (columns >= kBooks) {
             // kinetic + potential + elastic + removed + joints_damped + contacts + integration -
             // injected - driven

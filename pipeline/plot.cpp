@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "pipeline/energy_csv.h"
 #include "pipeline/process.h"
 #include "pipeline/tool_output.h"
 

@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/energy_csv.h"
-
 namespace shatter {
 
 struct EnergyCurve {

@@ -18,7 +18,7 @@ namespace shatter {
 // pieces, not of the rows: a pair of pieces shares dozens of rows).
 struct PieceSolver::Direct {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-    Eigen::VectorXd body_rhs;  // scratch: the moving bodies' velocity changes
+    Eigen::VectorXd u, rhs, z;  // scratch of solve_joints_directly
     std::vector<double> inv_cfm;      // 1 / C per row
     std::vector<int> body_index;      // per solver body, its first unknown in G, or -1 (not moving)
     bool ok = false;
@@ -312,7 +312,6 @@ void PieceSolver::factor_body_space() {
                 d.impulse.segment<6>(k) += l * j;
             }
     }
-    d.body_rhs.resize(unknowns);
 }
 
 // One exact solve of the joint rows with the contacts' impulses held, carried out in the bodies'
@@ -330,7 +329,7 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
     const int unknowns = int(d.bodies.size()) * 6;
     Eigen::VectorXd& held = push ? d.push_impulse : d.impulse;
     // u, the moving bodies' velocity changes (or push velocities)
-    Eigen::VectorXd& u = d.body_rhs;
+    Eigen::VectorXd& u = d.u;
     u.resize(unknowns);
     for (size_t i = 0; i < d.bodies.size(); ++i) {
         const btSolverBody& body = m_tmpSolverBodyPool[d.bodies[i]];
@@ -339,14 +338,16 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
         u.segment<6>(Eigen::Index(6 * i)) << lin[0], lin[1], lin[2], ang[0], ang[1], ang[2];
     }
     // A u = G u - M u
-    Eigen::VectorXd rhs = d.G * u;
+    Eigen::VectorXd& rhs = d.rhs;
+    rhs.noalias() = d.G * u;
     for (size_t i = 0; i < d.bodies.size(); ++i)
         rhs.segment<6>(Eigen::Index(6 * i)).noalias() -= d.mass[i] * u.segment<6>(Eigen::Index(6 * i));
     if (push)
         rhs = -rhs - held;
     else
         rhs = d.rhs_body - held - rhs;
-    const Eigen::VectorXd z = d.ldlt.solve(rhs);
+    Eigen::VectorXd& z = d.z;
+    z = d.ldlt.solve(rhs);
     // Since G z = J^T C^-1 r, the new impulses J^T l' = held + M z: the bodies' velocities change
     // by z.
     for (size_t i = 0; i < d.bodies.size(); ++i) {

@@ -134,10 +134,9 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     m.world.setGravity(to_bullet(setup.scene.gravity));
     btContactSolverInfo& info = m.world.getSolverInfo();
     info.m_numIterations = int(setup.iterations);
-    if (setup.direct_joints && !(setup.converge_tolerance > 0))
-        m.solver.converge(kDirectTolerance, int(kDirectIterationCap * setup.iterations));
-    else
-        m.solver.converge(setup.converge_tolerance, int(std::max(setup.max_iterations, setup.iterations)));
+    const bool direct_default = setup.direct_joints && !(setup.converge_tolerance > 0);
+    m.solver.converge(joint_tolerance(), direct_default ? int(kDirectIterationCap * setup.iterations)
+                                                        : int(std::max(setup.max_iterations, setup.iterations)));
     m.solver.direct_joints(setup.direct_joints);
     m.solver.push_joints(setup.direct_joints);
     // A joined push turns the pieces as the joints ask (Bullet's default applies a tenth of the turn).
@@ -495,6 +494,10 @@ void BulletWorld::Impl::account_step(double h_step) {
         work.driven -= drivers;
     }
     residual_known = true;
+}
+
+double BulletWorld::joint_tolerance() const {
+    return setup_.direct_joints && !(setup_.converge_tolerance > 0) ? kDirectTolerance : setup_.converge_tolerance;
 }
 
 void BulletWorld::set_step(double h) {

@@ -51,13 +51,13 @@ struct WorldSetup {
     bool direct_joints = false;
 };
 
-// Direct joints' convergence: 1% of the strength, a fifth of what the residual check allows
-// (simulate/simulate.h kResidualTolerance); ten times the step's iterations at most (measured:
-// docs/physics.md section 5b).
 // The iterations of a step stop once no row changes a relative velocity by more than this: a
 // pass that changes nothing (unit: m/s; at 1e-6 the stiffness identity's 2,000 iterations stopped
 // 7.5e-5 short of k, at 1e-10 1.8e-8).
 inline constexpr double kSettledSpeed = 1e-10;
+// Direct joints' convergence: 1% of the strength, a fifth of what the residual check allows
+// (simulate/simulate.h kResidualTolerance); ten times the step's iterations at most (measured:
+// docs/physics.md section 5b).
 inline constexpr double kDirectTolerance = 0.01;
 inline constexpr double kDirectIterationCap = 10;
 
@@ -74,6 +74,10 @@ public:
     // The most solver iterations a batch of islands took in the last step.
     int last_step_iterations() const;
     double h() const { return setup_.h; }
+    // The tolerance the joints' solve iterates to, of each joint's strength: converge_tolerance,
+    // or kDirectTolerance for direct joints without it; 0: the step's own iterations only. Two
+    // solves of a joint at rest can differ by twice this.
+    double joint_tolerance() const;
     // Changes the solver step for the steps that follow (`[simulate] substeps = "auto"`): the
     // joints' ERP and CFM and Bullet's breaking thresholds follow it.
     void set_step(double h);

@@ -80,8 +80,7 @@ void check_cfm(const BulletWorld& world, const Model& model, const SimulationInp
 class Run {
 public:
     Run(const SimulationInput& in, BulletWorld& world)
-        : in_(in), world_(world), policy_(in.simulate.rate_limit), energize_(energize_settings(in)),
-          direct_(in.simulate.joints == JointSolve::Direct) {}
+        : in_(in), world_(world), policy_(in.simulate.rate_limit), energize_(energize_settings(in)) {}
 
     void substep(SimulationResult& out) {
         std::shared_ptr<BulletWorld::Snapshot> start;
@@ -171,10 +170,10 @@ public:
             const bool both = world_.piece_dynamic(world_.piece_a(c)) && world_.piece_dynamic(world_.piece_b(c));
             const double spring = both ? world_.stiffness(c) * world_.joint_stretch(c).stretch.norm() : 0.0;
             const double s = world_.strength(c);
-            // A direct solve stops when no joint's correction stands for more than kDirectTolerance
-            // of its strength: two forces of one joint can differ by twice that with nothing
-            // happening (the pieces of a resting object), which is not a load.
-            const double df = std::max(0.0, (f - before_[c]).norm() - (direct_ ? 2 * kDirectTolerance * s : 0.0));
+            // A solve that stops at a tolerance (direct joints: kDirectTolerance of the strength)
+            // leaves two forces of one joint up to twice that apart with nothing happening (the
+            // pieces of a resting object), which is not a load.
+            const double df = std::max(0.0, (f - before_[c]).norm() - 2 * world_.joint_tolerance() * s);
             const double peak = std::max({f.norm(), spring, omega_h * df});
             load = std::max(load, s > 0 ? peak / s : (peak > 0 ? INFINITY : 0.0));
         }
@@ -237,7 +236,6 @@ private:
     };
     std::vector<Held> held_;
     std::vector<Vec3> before_;  // the joints' forces before a probe step
-    bool direct_;               // [simulate] joints = "direct"
 };
 
 std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model) {
