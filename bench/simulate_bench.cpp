@@ -5,7 +5,7 @@
 // Arguments (optional): a scene name to run only that scene (bunny, bunny1000, plate10, plate32,
 // plate100),
 // then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
-// then the joint solve ("iterative", as shipped, or "direct"; [simulate] joints), then what the kicks
+// then the joint solve ("auto", as shipped, "iterative" or "direct"; [simulate] joints), then what the kicks
 // move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped).
 // Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
 // constraints runs at >= 60 steps per second.
@@ -25,7 +25,7 @@ using namespace shatter;
 namespace {
 
 uint32_t g_iterations = 20;                    // the shipped default ([simulate] iterations)
-JointSolve g_joints = JointSolve::Iterative;  // the shipped default ([simulate] joints)
+JointSolve g_joints = JointSolve::Auto;  // the shipped default ([simulate] joints)
 KickBodiesMode g_kick_bodies = SimulateSettings{}.kick_bodies;  // the shipped default ([simulate] kick_bodies)
 
 void run(const char* name, const Model& model, SimulationInput in, double alpha) {
@@ -46,7 +46,7 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
         for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
     }
     std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f\n", name,
-                in.simulate.joints == JointSolve::Direct ? "+direct" : "", model.pieces.size(),
+                solves_joints_directly(model, in.simulate) ? "+direct" : "", model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
                 double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
@@ -80,7 +80,10 @@ int main(int argc, char** argv) {
     const std::string only = argc > 1 ? argv[1] : "";
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
-    if (argc > 4) g_joints = std::string(argv[4]) == "direct" ? JointSolve::Direct : JointSolve::Iterative;
+    if (argc > 4)
+        g_joints = std::string(argv[4]) == "direct"      ? JointSolve::Direct
+                   : std::string(argv[4]) == "iterative" ? JointSolve::Iterative
+                                                         : JointSolve::Auto;
     if (argc > 5) g_kick_bodies = std::string(argv[5]) == "joined" ? KickBodiesMode::Joined : KickBodiesMode::Pieces;
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"

@@ -101,6 +101,9 @@ bool check_headlines(const Headlines& h) {
     check(h.direct_cells_heavy > 0 && h.direct_stable_heavy == h.direct_cells_heavy,
           fmt::format("stability (mass ratio 100 and 1,000 x alpha 0 to 10): energized with direct joints is stable in "
                       "{} of {} cells (all)", h.direct_stable_heavy, h.direct_cells_heavy));
+    check(h.shipped_cells > 0 && h.shipped_stable == h.shipped_cells,
+          fmt::format("stability (every mass ratio x alpha 0 to 10): the shipped method and joints (\"auto\") are "
+                      "stable in {} of {} cells (all)", h.shipped_stable, h.shipped_cells));
     return ok;
 }
 

@@ -50,12 +50,15 @@ void row(Csv& csv, const std::string& map, const std::string& method, const char
                         c.guard_refuses, c.breaks, d(c.growth), d(c.wall), d(c.injected), d(c.momentum_work)));
 }
 
-// A method's name, optionally with "+direct" for [simulate] joints = "direct".
+// A method's name, optionally with "+direct" for [simulate] joints = "direct" or "+auto" for the
+// shipped "auto" (direct above kIterativeMassRatio); without either the joints are iterative.
 void apply_method_and_joints(const std::string& name, SimulationInput& in) {
-    const std::string suffix = "+direct";
-    const bool direct = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-    apply_method(direct ? name.substr(0, name.size() - suffix.size()) : name, in);
-    if (direct) in.simulate.joints = JointSolve::Direct;
+    const size_t plus = name.find('+');
+    apply_method(name.substr(0, plus), in);
+    const std::string joints = plus == std::string::npos ? "" : name.substr(plus + 1);
+    in.simulate.joints = joints == "direct" ? JointSolve::Direct
+                         : joints == "auto" ? JointSolve::Auto
+                                            : JointSolve::Iterative;
 }
 
 // The 3D scenes: every scene x {plain, energized, opposed} x {iterative, direct}, the hanging
@@ -129,9 +132,10 @@ bool section_stability(const Options& opt, Headlines& h) {
     const std::vector<double> ratios = q ? std::vector<double>{0.01, 1, 100} : std::vector<double>{1e-3, 1e-2, 0.1, 1, 10, 100, 1e3};
     const std::vector<double> alphas = q ? std::vector<double>{0, 1, 10} : std::vector<double>{0, 0.5, 1, 2, 5, 10, 100};
     // "+direct": the method with [simulate] joints = "direct" (simulate/bullet_solver.h).
-    std::vector<std::string> ms2 = q ? std::vector<std::string>{"energized", "energized+direct"}
-                                     : std::vector<std::string>{"energized", "energized+direct", "paper", "opposed",
-                                                                "rate_limit", "rollback"};
+    // "opposed+auto": the shipped method with the shipped joints (plain at alpha 0).
+    std::vector<std::string> ms2 = q ? std::vector<std::string>{"energized", "energized+direct", "opposed+auto"}
+                                     : std::vector<std::string>{"energized", "energized+direct", "opposed+auto",
+                                                                "paper", "opposed", "rate_limit", "rollback"};
     spdlog::info("study: stability map mass ratio x alpha");
     std::map<std::pair<std::string, std::pair<double, double>>, Stability> cls;
     for (const std::string& m : ms2)
@@ -146,6 +150,12 @@ bool section_stability(const Options& opt, Headlines& h) {
                 const Cell cell = run_cell(c);
                 cls[{m, {ratio, a}}] = cell.cls;
                 row(csv, "mass_alpha", m, "mass_ratio", ratio, "alpha", a, cell);
+            }
+    for (double ratio : ratios)
+        for (double a : alphas)
+            if (a <= 10) {
+                h.shipped_cells++;
+                h.shipped_stable += cls[{"opposed+auto", {ratio, a}}] == Stability::Stable;
             }
     for (double ratio : ratios)
         for (double a : alphas)

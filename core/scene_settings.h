@@ -152,8 +152,9 @@ enum class EnergizeMethod { Exact, Paper };
 enum class BreakCriterion { Force, BulletImpulse };
 // How the solver treats the joints (simulate/bullet_solver.h): "iterative": one row at a time, as
 // Bullet's sequential impulses; "direct": all joint rows of a step solved at once (a sparse
-// LDL^T) in every iteration, the contacts iterated around them.
-enum class JointSolve { Iterative, Direct };
+// LDL^T) in every iteration, the contacts iterated around them; "auto": direct when two joined
+// pieces' masses differ by more than kIterativeMassRatio (simulate/simulate.h), else iterative.
+enum class JointSolve { Auto, Iterative, Direct };
 // When the simulation goes unstable (a NaN or Inf, or kinetic energy beyond the energy budget,
 // simulate/instability.h): "stop": end the run there, keep the frames before, mark the trajectory
 // incomplete (exit code 5); "clamp": scale the pieces' velocities down to the budget and go on,
@@ -172,7 +173,7 @@ struct SimulateSettings {
     // step"); `substeps` is then unused.
     bool auto_substeps = false;
     uint32_t iterations = 20;   // sequential-impulse iterations per step
-    JointSolve joints = JointSolve::Iterative;  // "iterative" or "direct" (simulate/bullet_solver.h)
+    JointSolve joints = JointSolve::Auto;  // "auto", "iterative" or "direct" (simulate/bullet_solver.h)
     EnergizeMethod method = EnergizeMethod::Exact;  // sets the next three and kick_bodies (apply_energize_method)
     EnergySplitMode energy_split = EnergySplitMode::Total;  // "total": two bodies at rest gain alpha E; "per_body": each alpha E
     // "paper": -(t x f) per body; "opposed": momentum-conserving; "force": along the load, never

@@ -380,11 +380,15 @@ SettingsSection simulate_section() {
                    "sequential-impulse iterations per step")
                  .flag("--iterations"),
              choice<JointSolve>("joints", at(&Shot::simulate, &SimulateSettings::joints),
-                                {{"iterative", JointSolve::Iterative}, {"direct", JointSolve::Direct}},
+                                {{"auto", JointSolve::Auto}, {"iterative", JointSolve::Iterative},
+                                 {"direct", JointSolve::Direct}},
                                 "\"iterative\": joint rows one at a time (Bullet's sequential impulses); \"direct\": "
                                 "all joint rows solved at once in every iteration (a sparse LDL^T), so their forces "
                                 "match their springs whatever the pieces' mass ratios; the contacts iterated around "
-                                "them (docs/physics.md, \"Direct joints\")")
+                                "them (docs/physics.md, \"Direct joints\"); \"auto\": direct when two joined pieces' "
+                                "masses differ by more than 10 times (where iterative joints start to fail: "
+                                "docs/accuracy.md, \"The stability map\") in a model of at most 100 pieces, else "
+                                "iterative")
                  .flag("--joints")
                  .json_unless_default(),
              method(),

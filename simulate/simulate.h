@@ -137,6 +137,23 @@ inline size_t count_fragments(const Model& model, const std::vector<BreakRecord>
     return count_fragments(model, broken);
 }
 
+// The largest mass ratio between two pieces that share a constraint (heavier over lighter; 1 with
+// no constraints), and which two: the ratio at which sequential impulses stop converging on the
+// joints between them (docs/accuracy.md, "The stability map").
+double largest_joined_mass_ratio(const Model& model, uint32_t* heavier = nullptr, uint32_t* lighter = nullptr);
+// joints = "auto" solves the joints directly when the largest joined mass ratio is above this: the
+// rig of the stability map (20 iterations) is stable with iterative joints up to a ratio of 10
+// and cascades from 12 on; direct joints hold it up to 1,000 (docs/accuracy.md, "The stability
+// map"). The ratio is between two joined pieces: a load passed down a chain of moderate ratios (a
+// stack 4.6 times heavier at each joint, 100 from top to bottom) is not caught.
+inline constexpr double kIterativeMassRatio = 10;   // (unit: 1)
+// ... for models of at most this many pieces: direct joints cost about as much as iterative ones
+// at 10 pieces, 2 times at 50 and 100, 4.6 times at 1,000 (docs/physics.md section 5b); a larger
+// model keeps iterative joints and is warned.
+inline constexpr size_t kAutoDirectPieces = 100;
+// Whether a run of `model` with these settings solves its joints directly ("auto" resolved).
+bool solves_joints_directly(const Model& model, const SimulateSettings& s);
+
 // Where the frames go: frame count for duration and fps (frame 0 at t = 0 included). With
 // duration = "auto", the most frames: those of max_duration.
 uint32_t frame_count(const SimulateSettings& s);

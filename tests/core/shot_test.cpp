@@ -97,12 +97,12 @@ TEST(ShotFile, TheDefaultShotResolvesARealMaterialsJointsUnlessTheUserChoseTheSt
         const Shot s = default_shot_for_mesh("horse.3ds", {weak});
         EXPECT_FALSE(s.simulate.auto_substeps) << weak;
         EXPECT_EQ(s.simulate.substeps, 16u) << weak;
-        EXPECT_EQ(s.simulate.joints, JointSolve::Iterative) << weak;
+        EXPECT_EQ(s.simulate.joints, JointSolve::Auto) << weak;
     }
     const Shot step = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.substeps=64"});
     EXPECT_FALSE(step.simulate.auto_substeps);
     EXPECT_EQ(step.simulate.substeps, 64u);
-    EXPECT_EQ(step.simulate.joints, JointSolve::Iterative);
+    EXPECT_EQ(step.simulate.joints, JointSolve::Auto);
     const Shot joints = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.joints=iterative"});
     EXPECT_FALSE(joints.simulate.auto_substeps);
     EXPECT_EQ(joints.simulate.joints, JointSolve::Iterative);
