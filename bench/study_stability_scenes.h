@@ -25,6 +25,11 @@
 //                0.30 / 0.22 = 15 m/s). Joint strength 10 MPa; "tower_weak" the same at 1 MPa,
 //                where the hit breaks joints.
 //   grid         a 30 x 30 plate of cubes hanging from its two top corners (grid_case).
+//   wall         a 10 x 10 wall of welded 5 cm concrete cubes on a fixed bottom row, hit by three
+//                steel balls (projectiles, 0.88 kg at 10 m/s) at three places 0.1 s apart.
+//                Stable: every broken joint lies next to a hit (its pivot within
+//                kWallDamageRadius of the point a ball was aimed at) and no unbroken joint is ever
+//                open by more than 1 mm. Joint strength 2 MPa; "wall_weak" the same at 1 MPa.
 //
 // Header-only so that tests/simulate/stability_scenes_test.cpp pins the same scenes.
 #pragma once
@@ -42,7 +47,8 @@ namespace shatter::study::scenes3d {
 
 inline const std::vector<std::string>& names() {
     static const std::vector<std::string> n = {"hanging", "alternating", "stack",      "stack_fixed",
-                                               "stack_it200", "tower",     "tower_weak", "grid"};
+                                               "stack_it200", "tower",     "tower_weak", "wall",
+                                               "wall_weak",   "grid"};
     return n;
 }
 
@@ -195,6 +201,76 @@ inline StudyCase tower_case(double strength = 1e7, double speed = kHitSpeed) {
     return c;
 }
 
+// The wall: kWallCubes x kWallCubes concrete cubes of kWallEdge in the xy plane (z through its
+// thickness), 2 x 2 constraints per face, the bottom row fixed, no ground. Ball i (kSphereRadius,
+// steel) is aimed at the centre of a cube's front face (kWallHits: column, row from the bottom
+// left) to arrive at kHitStart + 0.1 i s, thrown at t = 0 from kHitSpeed x that time in front of
+// it (gravity's drop aimed for). A joint is "next to a hit" when its pivot lies within
+// kWallDamageRadius of a struck point: the hit cube's own joints (2.5 to 3.5 cm away) and those
+// of the ring of cubes around it (up to 7.9 cm) are; the next ring's (from 8.4 cm) are not.
+inline constexpr uint32_t kWallCubes = 10;
+inline constexpr double kWallEdge = 0.05, kWallDamageRadius = 0.08;
+inline constexpr uint32_t kWallHits[3][2] = {{2, 7}, {7, 7}, {5, 3}};
+
+// Where ball i strikes (the centre of its cube's front face, world frame).
+inline Vec3 wall_hit_point(uint32_t i) {
+    return Vec3((kWallHits[i][0] + 0.5 - 0.5 * kWallCubes) * kWallEdge, (kWallHits[i][1] + 0.5) * kWallEdge,
+                -0.5 * kWallEdge);
+}
+
+inline StudyCase wall_case(double strength = 2e6) {
+    GenerateSettings g = default_generate(GenerateKind::Plate);
+    g.count = kWallCubes;
+    g.size = Vec3(kWallEdge, kWallEdge, kWallEdge);
+    g.constraints_per_side = 2;
+    g.density = 2400;
+    StudyCase c;
+    c.scene = "wall";
+    c.model = generate_model(g);
+    // The plate's model frame has its cubes in x and z and its thickness along y. Turned 90
+    // degrees about x (world y = -model z, world z = model y) and placed on its base: the wall
+    // stands on y = 0 centred on x = 0 and z = 0, its front face at z = -kWallEdge / 2.
+    SimulationInput& in = c.input;
+    in.object.pose.rotation_deg = Vec3(90, 0, 0);
+    in.object.place = Placement::Base;
+    in.scene.ground = false;
+    double bottom = -INFINITY;
+    for (const Piece& p : c.model.pieces) bottom = std::max(bottom, p.mass.center.z());
+    for (uint32_t p = 0; p < c.model.pieces.size(); ++p)
+        if (c.model.pieces[p].mass.center.z() > bottom - 0.5 * kWallEdge) {
+            PieceDriveSettings fixed;
+            fixed.piece = p;
+            fixed.fixed = true;
+            in.object.driven.push_back(fixed);
+        }
+    in.material.stiffness = 1e10;
+    in.material.damping = 0;
+    in.material.strength = strength;
+    in.material.alpha = 1;
+    const Vec3 gravity = in.scene.gravity;
+    for (uint32_t i = 0; i < 3; ++i) {
+        ProjectileSettings b;
+        b.name = "ball " + std::to_string(i + 1);
+        b.shape.kind = ShapeKind::Sphere;
+        b.shape.radius = kSphereRadius;
+        b.density = 7800;
+        b.surface = {0.5, 0.1};
+        // Arrives touching the face at time T: p(T) = p0 + v T + g T^2 / 2.
+        const double T = kHitStart + 0.1 * i;
+        const Vec3 arrive = wall_hit_point(i) - Vec3(0, 0, kSphereRadius);
+        const Vec3 start = arrive - Vec3(0, 0, kHitSpeed * T);
+        b.pose.position = start;
+        b.velocity = (arrive - start - 0.5 * gravity * T * T) / T;
+        in.scene.projectiles.push_back(b);
+    }
+    in.simulate.duration = 0.6;
+    in.simulate.fps = 120;
+    in.simulate.substeps = 8;
+    in.simulate.iterations = 20;
+    in.simulate.exact_energy = true;
+    return c;
+}
+
 inline StudyCase make_scene(const std::string& name, double mass_ratio) {
     if (name == "hanging") return hanging_case(mass_ratio);
     if (name == "stack") return stack_case(mass_ratio);
@@ -214,6 +290,12 @@ inline StudyCase make_scene(const std::string& name, double mass_ratio) {
     }
     if (name == "alternating") return hanging_case(mass_ratio, 10, true);
     if (name == "grid") return grid_case();
+    if (name == "wall") return wall_case();
+    if (name == "wall_weak") {
+        StudyCase c = wall_case(1e6);
+        c.scene = "wall_weak";
+        return c;
+    }
     if (name == "tower") return tower_case();
     if (name == "tower_weak") {
         StudyCase c = tower_case(1e6);
@@ -277,6 +359,27 @@ inline Stability map_class(const StudyCase& c, const SimulationResult& r, bool r
     return Stability::Stable;
 }
 
+// The widest any constraint's two pivots (each carried by its piece) were apart in a recorded
+// frame before it broke (unit: m).
+inline double widest_open(const StudyCase& c, const SimulationResult& r) {
+    const Trajectory& t = r.trajectory;
+    std::vector<double> until(c.model.constraints.size(), INFINITY);
+    for (const BreakRecord& b : r.breaks) until[b.constraint] = std::min(until[b.constraint], b.time);
+    double open = 0;
+    for (uint32_t f = 0; f < t.frames(); ++f)
+        for (size_t i = 0; i < c.model.constraints.size(); ++i) {
+            if (f / t.fps >= until[i] - 1e-12) continue;
+            const Constraint& k = c.model.constraints[i];
+            auto at = [&](uint32_t piece) {
+                const BodyPose& pose = t.pose(f, piece);
+                return Vec3(pose.rotation.cast<double>() * (k.pivot - c.model.pieces[piece].mass.center) +
+                            pose.position.cast<double>());
+            };
+            open = std::max(open, (at(k.piece_a) - at(k.piece_b)).norm());
+        }
+    return open;
+}
+
 inline Verdict judge(const StudyCase& c, const SimulationResult& r, bool refused) {
     Verdict v;
     const bool tower = c.scene.rfind("tower", 0) == 0;
@@ -316,6 +419,20 @@ inline Verdict judge(const StudyCase& c, const SimulationResult& r, bool refused
         v.measure = (centre(t, frames - 1, top) - centre(t, 0, top)).norm();
         v.top_speed = (centre(t, frames - 1, top) - centre(t, frames - 2, top)).norm() * t.fps;
         v.physical = v.breaks == 0 && v.measure < 1e-3 && v.top_speed < 0.01;
+    } else if (c.scene.rfind("wall", 0) == 0) {
+        // Each broken joint's pivot where the wall stood, against the struck points.
+        const Mat3 rot = rotation_matrix(c.input.object.pose.rotation_deg);
+        const Vec3 move = object_translation(c.model, c.input.object);
+        v.measure = 0;
+        for (const BreakRecord& b : r.breaks) {
+            const Vec3 pivot = rot * c.model.constraints[b.constraint].pivot + move;
+            double nearest = INFINITY;
+            for (uint32_t i = 0; i < 3; ++i) nearest = std::min(nearest, (pivot - wall_hit_point(i)).norm());
+            v.measure = std::max(v.measure, nearest);
+            v.far_breaks += nearest > kWallDamageRadius;
+        }
+        v.open = widest_open(c, r);
+        v.physical = v.far_breaks == 0 && v.open < 1e-3;
     } else if (c.scene == "grid") {
         v.measure = 0;
         for (uint32_t p = 0; p < c.model.pieces.size(); ++p)
@@ -328,21 +445,7 @@ inline Verdict judge(const StudyCase& c, const SimulationResult& r, bool refused
             for (uint32_t p = 0; p < kTowerBoxes; ++p)
                 if (p + 2 <= kHitBox || p >= kHitBox + 2)
                     v.measure = std::max(v.measure, (centre(t, f, p) - centre(t, f - 1, p)).norm() * t.fps);
-        // Each constraint's pivot gap up to its break (or the end).
-        std::vector<double> until(c.model.constraints.size(), INFINITY);
-        for (const BreakRecord& b : r.breaks) until[b.constraint] = std::min(until[b.constraint], b.time);
-        v.open = 0;
-        for (uint32_t f = 0; f < frames; ++f)
-            for (size_t i = 0; i < c.model.constraints.size(); ++i) {
-                if (f / t.fps >= until[i] - 1e-12) continue;
-                const Constraint& k = c.model.constraints[i];
-                auto at = [&](uint32_t piece) {
-                    const BodyPose& pose = t.pose(f, piece);
-                    return Vec3(pose.rotation.cast<double>() * (k.pivot - c.model.pieces[piece].mass.center) +
-                                pose.position.cast<double>());
-                };
-                v.open = std::max(v.open, (at(k.piece_a) - at(k.piece_b)).norm());
-            }
+        v.open = widest_open(c, r);
         v.physical = v.far_breaks == 0 && v.open < 1e-3 && v.measure < 2 * kHitSpeed;
     }
     return v;

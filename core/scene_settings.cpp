@@ -56,6 +56,26 @@ Vec3 drive_offset(const PieceDriveSettings& d, double t) {
     return interpolate_keys(d.keys, t);  // the shot reader demands increasing times
 }
 
+double projectile_mass(const ProjectileSettings& p) {
+    const double volume = p.shape.kind == ShapeKind::Sphere ? 4.0 / 3.0 * M_PI * std::pow(p.shape.radius, 3)
+                                                            : p.shape.size.prod();
+    return p.density * volume;
+}
+
+std::vector<KinematicSettings> scene_props(const SceneSettings& scene) {
+    std::vector<KinematicSettings> props = scene.kinematic;
+    for (const ProjectileSettings& p : scene.projectiles) {
+        KinematicSettings k;
+        k.name = p.name;
+        k.shape = p.shape;
+        k.pose = p.pose;
+        k.surface = p.surface;
+        k.colour = p.colour;
+        props.push_back(k);
+    }
+    return props;
+}
+
 Vec3 kinematic_position(const KinematicSettings& k, double t) {
     if (k.keys.empty()) return k.pose.position + k.velocity * t;
     auto by_time = [](const KeyFrame& a, const KeyFrame& b) { return a.time < b.time; };

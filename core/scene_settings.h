@@ -65,6 +65,18 @@ struct KinematicSettings {  // moved by script, pushes dynamic bodies, is not pu
 // The kinematic body's position at time t (unit: m).
 Vec3 kinematic_position(const KinematicSettings& k, double t);
 
+struct ProjectileSettings {  // thrown at the object: moved by gravity and contacts, not by script
+    std::string name;
+    ShapeSettings shape;           // box or sphere
+    Pose pose;                     // at t = 0
+    Vec3 velocity = Vec3::Zero();  // at t = 0 (unit: m/s)
+    double density = 7800;         // (unit: kg/m^3) steel
+    SurfaceSettings surface;
+    std::array<float, 3> colour = {0.55f, 0.56f, 0.58f};
+};
+// A projectile's mass (unit: kg).
+double projectile_mass(const ProjectileSettings& p);
+
 struct SceneSettings {
     Vec3 gravity = Vec3(0, -9.81, 0);  // (unit: m/s^2)
     bool ground = true;                // an infinite ground plane y = ground_height
@@ -72,7 +84,12 @@ struct SceneSettings {
     SurfaceSettings ground_surface{0.5, 0.1};
     std::vector<ColliderSettings> colliders;
     std::vector<KinematicSettings> kinematic;
+    std::vector<ProjectileSettings> projectiles;
 };
+// The bodies a trajectory records after the pieces ("props"), in its order: the kinematic bodies,
+// then the projectiles, each as its shape, name, colour and pose at t = 0 (what render and the
+// .glb draw; a projectile's script is empty).
+std::vector<KinematicSettings> scene_props(const SceneSettings& scene);
 
 // A piece of the object that the scene moves instead of the solver (the chain's end cubes, an
 // anchor): it is not pushed, takes no energizing impulse, and its constraints still break.

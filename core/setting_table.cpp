@@ -164,6 +164,7 @@ std::string markdown(const std::vector<BasicSetting<Root>>& settings) {
 std::string settings_markdown(const std::string& name) {
     if (name == "scene.colliders") return markdown(collider_settings());
     if (name == "scene.kinematic") return markdown(kinematic_settings());
+    if (name == "scene.projectile") return markdown(projectile_settings());
     if (name == "object.driven") return markdown(driven_settings());
     if (name == "material.presets") return material_presets_markdown();
     const SettingsSection* section = find_settings_section(name);

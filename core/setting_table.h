@@ -151,6 +151,7 @@ struct SettingsSection {
 // keys with velocity). The table's order is the entry's key order in the settings JSON.
 const std::vector<BasicSetting<ColliderSettings>>& collider_settings();
 const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings();
+const std::vector<BasicSetting<ProjectileSettings>>& projectile_settings();
 // The keys of one [[object.driven]] entry (core/shot_scene.cpp adds: keys or velocity, not
 // both, and no motion for a fixed piece).
 const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings();

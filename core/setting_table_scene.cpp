@@ -127,6 +127,23 @@ const std::vector<BasicSetting<KinematicSettings>>& kinematic_settings() {
     return settings;
 }
 
+const std::vector<BasicSetting<ProjectileSettings>>& projectile_settings() {
+    using P = ProjectileSettings;
+    static const std::vector<BasicSetting<P>> settings = joined<P>(
+        {{name_setting<P>(),
+          choice<ShapeKind, P>("shape", at(&P::shape, &ShapeSettings::kind),
+                               {{"box", ShapeKind::Box}, {"sphere", ShapeKind::Sphere}}, "the body's shape"),
+          vec3<P>("size", "m", at(&P::shape, &ShapeSettings::size), kSizeLimits, "[0.05, 0.05, 0.05]",
+                  "box: full extents along its own axes"),
+          number<P>("radius", "m", at(&P::shape, &ShapeSettings::radius), kSizeLimits, "sphere: radius")},
+         pose_settings<P>(),
+         {vec3<P>("velocity", "m/s", at(&P::velocity), kVelocityLimits, "[0, 0, 10]", "velocity at t = 0"),
+          number<P>("density", "kg/m^3", at(&P::density), kDensityLimits, "its mass over its volume (steel 7,800)")},
+         surface_settings<P>(),
+         {linear_colour<P>(&P::colour, "colour in render")}});
+    return settings;
+}
+
 const std::vector<BasicSetting<PieceDriveSettings>>& driven_settings() {
     using D = PieceDriveSettings;
     static const std::vector<BasicSetting<D>> settings = {
@@ -162,10 +179,15 @@ SettingsSection scene_section() {
             [](const Shot& shot, ojson& j) {
                 j["colliders"] = entries_json(collider_settings(), shot.scene.colliders);
                 j["kinematic"] = entries_json(kinematic_settings(), shot.scene.kinematic);
+                // Only when there are any: the settings of shots without them keep their bytes.
+                if (!shot.scene.projectiles.empty())
+                    j["projectile"] = entries_json(projectile_settings(), shot.scene.projectiles);
             },
             [](JsonObject& o, Shot& shot) {
                 shot.scene.colliders = entries_from_json(collider_settings(), o, "colliders");
                 shot.scene.kinematic = entries_from_json(kinematic_settings(), o, "kinematic");
+                if (o.has("projectile"))
+                    shot.scene.projectiles = entries_from_json(projectile_settings(), o, "projectile");
             }};
 }
 

@@ -144,6 +144,12 @@ void read_kinematic(TomlSection& s, KinematicSettings& k, const std::string& sho
     s.finish();
 }
 
+void read_projectile(TomlSection& s, ProjectileSettings& p, const std::string& shot_path) {
+    read_entry(projectile_settings(), s, p);
+    check_shape(s, p.shape, shot_path, true);
+    s.finish();
+}
+
 // [[object.driven]]: a piece the scene moves (kinematic) or holds (fixed = true).
 void read_drive(TomlSection& s, PieceDriveSettings& d, const std::string&) {
     read_entry(driven_settings(), s, d);
@@ -182,6 +188,7 @@ bool read_numbers(TomlSection& s, const char* key, double* out, size_t n, const 
 void read_scene_arrays(TomlSection& s, SceneSettings& scene, const std::string& shot_path) {
     read_table_array(s, "colliders", shot_path, scene.colliders, read_collider);
     read_table_array(s, "kinematic", shot_path, scene.kinematic, read_kinematic);
+    read_table_array(s, "projectile", shot_path, scene.projectiles, read_projectile);
 }
 
 void read_object_driven(TomlSection& s, ObjectSettings& object) {

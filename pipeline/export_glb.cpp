@@ -278,7 +278,8 @@ void add_prop(SceneParts& parts, const KinematicSettings& k, uint32_t i, const s
     parts.node(name, {static_cast<unsigned>(parts.meshes.size() - 1)});
 }
 
-// The kinematic bodies of the trajectory's scene (its settings JSON, key "scene"), checked
+// The props of the trajectory's scene (its settings JSON, key "scene": the kinematic bodies, then
+// the projectiles), checked
 // against the trajectory as render checks them.
 std::vector<KinematicSettings> trajectory_props(const Trajectory& t, const std::string& where) {
     SceneSettings scene;
@@ -288,11 +289,12 @@ std::vector<KinematicSettings> trajectory_props(const Trajectory& t, const std::
             throw_input_error(where, "the trajectory's settings are not a JSON object", "simulate again");
         if (settings.contains("scene")) scene = scene_from_json(settings["scene"], where);
     }
-    if (t.props != scene.kinematic.size())
-        throw_input_error(where, fmt::format("the trajectory moves {} kinematic bodies but its scene describes {}",
-                                             t.props, scene.kinematic.size()),
+    std::vector<KinematicSettings> props = scene_props(scene);
+    if (t.props != props.size())
+        throw_input_error(where, fmt::format("the trajectory moves {} kinematic bodies and projectiles but its scene "
+                                             "describes {}", t.props, props.size()),
                           "simulate again; the file is inconsistent");
-    return scene.kinematic;
+    return props;
 }
 
 aiQuaternion to_ai(const Eigen::Quaternionf& q) { return aiQuaternion(q.w(), q.x(), q.y(), q.z()); }
@@ -458,7 +460,7 @@ void export_glb(const Model& model, const Trajectory& trajectory, const std::str
         RenderScene rs;
         rs.model = &model;
         rs.trajectory = &trajectory;
-        rs.scene.kinematic = trajectory_props(trajectory, glb_path);
+        trajectory_props(trajectory, glb_path);  // the check: the props the trajectory moves are the scene's
         if (!trajectory.settings_json.empty()) {
             const nlohmann::json settings = nlohmann::json::parse(trajectory.settings_json, nullptr, false);
             if (settings.is_object() && settings.contains("scene")) rs.scene = scene_from_json(settings["scene"], glb_path);

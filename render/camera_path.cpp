@@ -97,7 +97,8 @@ FollowInput follow_input(const RenderScene& scene) {
             in.turns[f].push_back(t.pose(f, i).rotation.cast<double>().normalized());
     std::vector<double> radius(t.bodies(), 0.0);
     for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_ball_radius(scene.model->pieces[i]);
-    for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(scene.scene.kinematic[k].shape);
+    const std::vector<KinematicSettings> props = scene_props(scene.scene);
+    for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(props[k].shape);
     std::vector<Ball> statics;
     for (const ColliderSettings& c : scene.scene.colliders)
         if (c.shape.kind == ShapeKind::Box || c.shape.kind == ShapeKind::Sphere)

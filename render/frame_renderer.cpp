@@ -49,7 +49,8 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
       target_(settings.width, settings.height, settings.msaa),
       shadow_program_(shaders::kShadowVertex, shaders::kShadowFragment, "shadow") {
     const Trajectory& t = *scene.trajectory;
-    assert(t.pieces == scene.model->pieces.size() && t.props == scene.scene.kinematic.size());
+    const std::vector<KinematicSettings> props = scene_props(scene.scene);
+    assert(t.pieces == scene.model->pieces.size() && t.props == props.size());
     if (settings.shadows) shadow_map_ = std::make_unique<ShadowMap>(settings.shadow_map);
     if (settings.colours == Colours::Input && !scene.model->materials.empty()) {
         std::vector<DecodedImage> images;
@@ -58,7 +59,7 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     }
     for (uint32_t i = 0; i < t.pieces; ++i) add_piece(i);
     for (uint32_t k = 0; k < t.props; ++k) {
-        const KinematicSettings& body = scene.scene.kinematic[k];
+        const KinematicSettings& body = props[k];
         Item item;
         item.mesh = std::make_unique<GpuMesh>(body.shape.kind == ShapeKind::Sphere
                                                   ? sphere_vertices(body.shape.radius, body.colour)

@@ -17,7 +17,8 @@ std::vector<Ball> animation_balls(const RenderScene& scene) {
     const Trajectory& t = *scene.trajectory;
     std::vector<double> radius(t.bodies(), 0.0);
     for (uint32_t i = 0; i < t.pieces; ++i) radius[i] = piece_radius(scene.model->pieces[i]);
-    for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(scene.scene.kinematic[k].shape);
+    const std::vector<KinematicSettings> props = scene_props(scene.scene);
+    for (uint32_t k = 0; k < t.props; ++k) radius[t.pieces + k] = shape_radius(props[k].shape);
     for (uint32_t f = 0; f < t.frames(); ++f)
         for (uint32_t b = 0; b < t.bodies(); ++b) balls.push_back({t.pose(f, b).position.cast<double>(), radius[b]});
     for (const ColliderSettings& c : scene.scene.colliders)

@@ -72,7 +72,8 @@ struct BulletWorld::Impl {
         bool active = false;
     };
     std::vector<PieceBody> pieces;
-    std::vector<btRigidBody*> props;
+    std::vector<btRigidBody*> props;        // the kinematic bodies, then the projectiles
+    std::vector<btRigidBody*> projectiles;  // dynamic: in the books beside the pieces
     std::vector<Joint> joints;
     std::vector<std::vector<uint32_t>> joints_of_piece;  // the joints with a constraint at each piece
     // The books of the steps (BulletWorld::StepWork), each joint's elastic energy after the last
@@ -126,7 +127,8 @@ struct BulletWorld::Impl {
 
 BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     : impl_(std::make_unique<Impl>(
-          uint32_t(1 + setup.scene.colliders.size() + setup.scene.kinematic.size() + model.pieces.size()))),
+          uint32_t(1 + setup.scene.colliders.size() + setup.scene.kinematic.size() + setup.scene.projectiles.size() +
+                   model.pieces.size()))),
       setup_(setup) {
     Impl& m = *impl_;
     m.dispatcher.setNearCallback(exact_aabb_near_callback);
@@ -188,6 +190,22 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
         btRigidBody* body = m.add_body(0, btVector3(0, 0, 0), shape, start, m.motions.back().get(), k.surface);
         body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
         m.props.push_back(body);
+    }
+    // Projectiles: boxes and spheres of their own mass, launched at t = 0.
+    for (const ProjectileSettings& p : setup.scene.projectiles) {
+        btCollisionShape* shape = p.shape.kind == ShapeKind::Sphere
+                                      ? static_cast<btCollisionShape*>(new btSphereShape(btScalar(p.shape.radius)))
+                                      : new btBoxShape(to_bullet(0.5 * p.shape.size));
+        m.shapes.emplace_back(shape);
+        const double mass = projectile_mass(p);
+        btVector3 inertia;
+        shape->calculateLocalInertia(btScalar(mass), inertia);
+        btRigidBody* body = m.add_body(mass, inertia, shape,
+                                       make_transform(rotation_matrix(p.pose.rotation_deg), p.pose.position), nullptr,
+                                       p.surface);
+        body->setLinearVelocity(to_bullet(p.velocity));
+        m.props.push_back(body);
+        m.projectiles.push_back(body);
     }
     build_pieces(model);
     build_joints(model);
@@ -831,6 +849,7 @@ double BulletWorld::kinetic_energy() const {
     double e = 0;
     for (const auto& p : impl_->pieces)
         if (p.dynamic) e += body_kinetic_energy(*p.body);
+    for (const btRigidBody* b : impl_->projectiles) e += body_kinetic_energy(*b);
     return e;
 }
 
@@ -849,6 +868,8 @@ double BulletWorld::potential_energy() const {
     double e = 0;
     for (const auto& p : impl_->pieces)
         if (p.dynamic) e -= impl_->gravity.dot(to_eigen(p.body->getCenterOfMassPosition())) / p.body->getInvMass();
+    for (const btRigidBody* b : impl_->projectiles)
+        e -= impl_->gravity.dot(to_eigen(b->getCenterOfMassPosition())) / b->getInvMass();
     return e;
 }
 
@@ -936,12 +957,14 @@ Vec3 BulletWorld::angular_momentum() const {
 }
 
 bool BulletWorld::finite() const {
-    for (const auto& pb : impl_->pieces) {
-        const btRigidBody& b = *pb.body;
-        if (!to_eigen(b.getCenterOfMassPosition()).allFinite() || !to_eigen(b.getLinearVelocity()).allFinite() ||
-            !to_eigen(b.getAngularVelocity()).allFinite())
-            return false;
-    }
+    const auto ok = [](const btRigidBody& b) {
+        return to_eigen(b.getCenterOfMassPosition()).allFinite() && to_eigen(b.getLinearVelocity()).allFinite() &&
+               to_eigen(b.getAngularVelocity()).allFinite();
+    };
+    for (const auto& pb : impl_->pieces)
+        if (!ok(*pb.body)) return false;
+    for (const btRigidBody* b : impl_->projectiles)
+        if (!ok(*b)) return false;
     return true;
 }
 

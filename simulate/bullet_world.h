@@ -6,8 +6,9 @@
 // Bodies: each piece is a rigid body whose frame is its principal frame at its centre of mass,
 // shaped as a compound of its convex collision parts (shrunk by the collision margin, so that
 // hull + margin is the part itself). Driven pieces ([[object.driven]]) are kinematic (or
-// static); props ([[scene.kinematic]]) are kinematic boxes or spheres; colliders and the ground
-// are static.
+// static); props are the kinematic boxes and spheres ([[scene.kinematic]]) and then the
+// projectiles ([[scene.projectile]], dynamic boxes and spheres of their own mass, in the energy
+// books beside the pieces); colliders and the ground are static.
 // Joined pieces never collide with each other: every constraint is added with Bullet's
 // "disable collisions between linked bodies", so two pieces that touch along a fracture face do
 // not push each other apart at rest (the classic frame-one explosion); when the last constraint
@@ -166,7 +167,8 @@ public:
     // Of the given pieces' dynamic ones, in a frame moving at velocity `frame` (unit: J).
     double kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame = Vec3::Zero()) const;
 
-    // Energy books over the dynamic pieces (driven pieces and props are scripted, not counted).
+    // Energy books over the dynamic pieces and the projectiles (driven pieces and kinematic bodies
+    // are scripted, not counted).
     double kinetic_energy() const;    // (unit: J)
     // Of the constraint's dynamic pieces, in a frame moving at velocity `frame` (unit: J).
     double kinetic_energy_of_pair(size_t c, const Vec3& frame = Vec3::Zero()) const;
@@ -185,7 +187,8 @@ public:
         // Taken by contacts: friction and inelastic impacts, less the potential energy their
         // pushes out of penetration gave (unit: J).
         double contacts = 0;
-        // Given to the dynamic pieces by driven pieces and props, through joints and contacts (unit: J).
+        // Given to the dynamic pieces by driven pieces and kinematic bodies, through joints and
+        // contacts (unit: J).
         double driven = 0;
         // What the time step's integration takes from kinetic + potential energy (unit: J). Of
         // gravity: a step moves a body by h v1 (symplectic Euler), so its potential energy changes

@@ -35,6 +35,7 @@ InstabilityGuard::InstabilityGuard(const BulletWorld& world, const Model& model,
     const double density_scale = material.density ? *material.density / model.density : 1.0;
     for (uint32_t p = 0; p < world.pieces(); ++p)
         if (world.piece_dynamic(p)) mass_ += model.pieces[p].mass.mass * density_scale;
+    for (const ProjectileSettings& p : scene.projectiles) mass_ += projectile_mass(p);
     for (const KinematicSettings& k : scene.kinematic)
         scripted_speed_ = std::max(scripted_speed_, top_speed(k.velocity, k.keys));
     std::vector<const PieceDriveSettings*> drive(world.pieces(), nullptr);

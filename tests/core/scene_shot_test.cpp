@@ -153,6 +153,44 @@ TEST(SceneShot, ReadsEveryKeyOfKinematicBodies) {
     EXPECT_EQ(press.pose.position, Vec3(0, 2, 0));  // the pose at t = 0 is the first key
 }
 
+// A projectile's keys, its mass from its shape and density (a steel sphere of 3 cm: 0.8822 kg), and
+// its place among the props: after the kinematic bodies.
+TEST(SceneShot, ReadsEveryKeyOfAProjectile) {
+    TempDir dir;
+    const Shot s = load_shot(dir.write("shot.toml", std::string(kFullShot) + R"(
+[[scene.projectile]]
+name = "ball"
+shape = "sphere"
+radius = 0.03
+position = [0, 0.5, -2]
+rotation = [0, 0, 10]
+velocity = [0, 1, 10]
+density = 7800
+friction = 0.2
+restitution = 0.3
+colour = [0.5, 0.5, 0.5]
+)"));
+    ASSERT_EQ(s.scene.projectiles.size(), 1u);
+    const ProjectileSettings& ball = s.scene.projectiles[0];
+    EXPECT_EQ(ball.name, "ball");
+    EXPECT_EQ(ball.shape.kind, ShapeKind::Sphere);
+    EXPECT_EQ(ball.pose.position, Vec3(0, 0.5, -2));
+    EXPECT_EQ(ball.pose.rotation_deg, Vec3(0, 0, 10));
+    EXPECT_EQ(ball.velocity, Vec3(0, 1, 10));
+    EXPECT_EQ(ball.surface.friction, 0.2);
+    EXPECT_EQ(ball.surface.restitution, 0.3);
+    EXPECT_EQ(ball.colour, (std::array<float, 3>{0.5f, 0.5f, 0.5f}));
+    EXPECT_NEAR(projectile_mass(ball), 7800 * 4.0 / 3.0 * M_PI * 0.03 * 0.03 * 0.03, 1e-12);
+    const std::vector<KinematicSettings> props = scene_props(s.scene);
+    ASSERT_EQ(props.size(), 3u);
+    EXPECT_EQ(props[2].name, "ball");
+    EXPECT_EQ(props[2].shape.radius, 0.03);
+    // A box has a size, not a radius; keys are a kinematic body's.
+    expect_error("[[scene.projectile]]\nshape = \"box\"\nradius = 0.1\n", {"s.toml:3", "scene.projectile[0].radius"});
+    expect_error("[[scene.projectile]]\nkeys = [[0, 1, 1, 1]]\n", {"s.toml:2", "scene.projectile[0].keys"});
+    expect_error("[[scene.projectile]]\ndensity = 0\n", {"s.toml:2", "scene.projectile[0].density"});
+}
+
 TEST(SceneShot, ReadsEveryKeyOfObjectMaterialAndSimulate) {
     TempDir dir;
     Shot s = load_shot(dir.write("shot.toml", kFullShot));
@@ -291,6 +329,8 @@ TEST(SceneShot, TheExampleInDocsShotMdLoads) {
     EXPECT_EQ(s.scene.colliders.size(), 1u);
     ASSERT_EQ(s.scene.kinematic.size(), 2u);
     EXPECT_EQ(kinematic_position(s.scene.kinematic[1], 0.25), Vec3(0, 0.75, 0));
+    ASSERT_EQ(s.scene.projectiles.size(), 1u);
+    EXPECT_EQ(s.scene.projectiles[0].velocity, Vec3(-6, 1, 0));
 }
 
 TEST(SceneShot, AbsoluteColliderMeshPathIsKept) {

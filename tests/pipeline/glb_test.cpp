@@ -174,6 +174,51 @@ TEST(GlbExport, HasANodePerBodyAMeshPerFaceKindAndAKeyPerFrameAtFrameOverFps) {
     EXPECT_NEAR(anim->mDuration / anim->mTicksPerSecond, (kFrames - 1) / kFps, 1e-6);
 }
 
+// A projectile ([[scene.projectile]]) is a prop after the kinematic bodies: its own node, mesh
+// and colour, animated by the trajectory's poses.
+TEST(GlbExport, AProjectileIsExportedAfterTheKinematicBodies) {
+    TempDir dir;
+    const Model m = test_model();
+    SceneSettings scene = test_scene();
+    ProjectileSettings ball;
+    ball.name = "ball";
+    ball.shape.kind = ShapeKind::Sphere;
+    ball.shape.radius = 0.05;
+    ball.colour = {0.1f, 0.7f, 0.2f};
+    scene.projectiles.push_back(ball);
+    const Trajectory pieces_only = test_trajectory(m, kFrames, false);
+    Trajectory t = pieces_only;
+    t.props = 3;
+    nlohmann::ordered_json j;
+    j["scene"] = to_json(scene);
+    t.settings_json = j.dump();
+    t.poses.clear();
+    for (uint32_t f = 0; f < kFrames; ++f) {
+        for (uint32_t b = 0; b < t.pieces; ++b) t.poses.push_back(pieces_only.pose(f, b));
+        for (uint32_t k = 0; k < 3; ++k) {
+            BodyPose p;
+            p.position = Eigen::Vector3f(float(k), 1.0f - 0.1f * f, 0.0f);
+            t.poses.push_back(p);
+        }
+    }
+    export_glb(m, t, dir.file("a.glb"));
+    Imported g(dir.file("a.glb"));
+    ASSERT_TRUE(g.scene);
+    const aiNode* node = g.node("prop_2_ball");
+    ASSERT_TRUE(node);
+    ASSERT_EQ(node->mNumMeshes, 1u);
+    const Colour c = g.base_colour(g.scene->mMeshes[node->mMeshes[0]]);
+    EXPECT_NEAR(c[1], 0.7f, 1e-6);
+    const aiNodeAnim* ch = g.channel("prop_2_ball");
+    ASSERT_TRUE(ch);
+    ASSERT_EQ(ch->mNumPositionKeys, kFrames);
+    EXPECT_NEAR(ch->mPositionKeys[kFrames - 1].mValue.y, 1.0 - 0.1 * (kFrames - 1), 1e-5);
+    // A trajectory that moves fewer props than its scene describes is refused.
+    Trajectory short_of_props = pieces_only;
+    short_of_props.settings_json = t.settings_json;
+    EXPECT_THROW(export_glb(m, short_of_props, dir.file("b.glb")), Error);
+}
+
 TEST(GlbExport, AKnownPoseComesBackWithin1e5AndTheRestPoseIsFrameZero) {
     TempDir dir;
     const Model m = test_model();
