@@ -538,6 +538,22 @@ double BulletWorld::max_load() const {
     return load;
 }
 
+bool BulletWorld::touches_scene() const {
+    const Impl& m = *impl_;
+    const auto dynamic_piece = [&](const btCollisionObject* o) {
+        const int i = o->getUserIndex();
+        return i >= 0 && size_t(i) < m.pieces.size() && m.pieces[size_t(i)].dynamic;
+    };
+    for (int i = 0; i < m.dispatcher.getNumManifolds(); ++i) {
+        const btPersistentManifold* manifold = m.dispatcher.getManifoldByIndexInternal(i);
+        const bool a = dynamic_piece(manifold->getBody0()), b = dynamic_piece(manifold->getBody1());
+        if (a == b) continue;  // two pieces, or none
+        for (int p = 0; p < manifold->getNumContacts(); ++p)
+            if (manifold->getContactPoint(p).getDistance() <= 0) return true;
+    }
+    return false;
+}
+
 double BulletWorld::approach_load() {
     Impl& m = *impl_;
     std::vector<double> scale(m.pieces.size(), 0.0);  // per piece: the largest sqrt(k / w) / strength

@@ -91,6 +91,9 @@ public:
     // counts v sqrt(k / w) / strength for the stiffest of that piece's joints, the peak force a
     // sudden stop of one side of a joint brings (docs/physics.md section 7). 0 without such.
     double approach_load();
+    // Whether a dynamic piece touches something that is not a piece (the ground, a collider, a
+    // kinematic body or a projectile) in the last step's contacts.
+    bool touches_scene() const;
     // A joint's natural frequency along its stiffest row, omega = sqrt(k w), w the row's inverse
     // effective mass with the bodies as they are now (0 when it is not active; unit: rad/s).
     double joint_frequency(size_t c) const;

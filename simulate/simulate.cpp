@@ -290,12 +290,16 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
     return n;
 }
 
-double rest_speed(const Model& model, double gravity) {
+double rest_speed_landed(const Model& model) {
     Eigen::AlignedBox3d box;
     for (const Piece& p : model.pieces)
         for (const Vec3& v : p.surface.vertices) box.extend(v);
     if (box.isEmpty()) return kRestSpeed;
-    return std::max(kRestSpeed, std::min(kRestSpeedPerSize * box.diagonal().norm(), kRestFall * gravity * kRestHold));
+    return std::max(kRestSpeed, kRestSpeedPerSize * box.diagonal().norm());
+}
+
+double rest_speed(const Model& model, double gravity) {
+    return std::max(kRestSpeed, std::min(rest_speed_landed(model), kRestFall * gravity * kRestHold));
 }
 
 double largest_joined_mass_ratio(const Model& model, uint32_t* heavier, uint32_t* lighter) {
@@ -392,7 +396,13 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // rad/s for 2 s, 0.14 degrees in all).
     std::vector<double> radius(world.pieces(), 0.0);
     for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
-    const double rest = rest_speed(model, in.scene.gravity.norm());
+    // Until the object first touches the scene (or breaks), the rest speed is capped by the fall
+    // (rest_speed); from then on it is the object's own (rest_speed_landed): a 600 m object
+    // whose last piece slides at 6 m/s moves under half a pixel a frame in a movie that frames it.
+    // The hold then begins no earlier than the frame it landed in: the fall before it does not count.
+    double rest = rest_speed(model, in.scene.gravity.norm());
+    bool landed = false;
+    uint32_t hold_from = 0, frame = 0;
     const uint32_t hold_frames = uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9));
     // Every dynamic piece stayed within reach of its pose at frame `from` up to frame `to`.
     auto stayed = [&](uint32_t from, uint32_t to) {
@@ -413,9 +423,15 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     bool fine = false;  // substeps = "auto": the next block runs in fine steps
     auto after_step = [&] {
         guard.after_step(world);
+        if (!landed && in.simulate.auto_duration && (!out.breaks.empty() || world.touches_scene())) {
+            landed = true;
+            rest = rest_speed_landed(model);
+            hold_from = frame;
+        }
         return check_stability(world, guard, run.injected(), in.simulate.on_instability, out);
     };
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
+        frame = f;
         if (!in.simulate.auto_substeps) {
             for (uint32_t s = 0; s < in.simulate.substeps; ++s) {
                 run.substep(out);
@@ -448,7 +464,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         record(world, t);
         out.energy.push_back(run.books());
         progress.advance();
-        if (in.simulate.auto_duration && f >= hold_frames && stayed(f - hold_frames, f)) {
+        if (in.simulate.auto_duration && f >= hold_from + hold_frames && stayed(f - hold_frames, f)) {
             out.rest_time = (f - hold_frames) / in.simulate.fps;
             break;
         }

@@ -196,17 +196,23 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
 // (|dx| + angle r, r its radius about its centre of mass; from the poses the trajectory keeps):
 // a piece trembling in place rests, one falling, creeping or turning further does not.
 // The simulation ends at the end of the first such hold, checked at frame boundaries
-// (deterministic), or at max_duration.
+// (deterministic), or at max_duration. A hold begins no earlier than the end of the frame in which
+// the object first touched the scene or broke (when it does), so that a fall does not count.
 // The rest speed is kRestSpeed, or kRestSpeedPerSize times the object's size (the diagonal of its
 // bounding box) when that is more: a 5 m object creeping at 5 cm/s moves less than half a pixel
-// a frame in a movie that frames it, and is still to the eye. But never more than a quarter of
-// the speed gravity gives in the hold (kRestFall x |g| x kRestHold, 1.23 m/s on Earth): a 100 m
-// object dropped from rest falls slower than 0.04 sizes per second for its whole first hold, and
-// would end its movie before it lands.
+// a frame in a movie that frames it, and is still to the eye. But, until the object first touches
+// the scene or breaks, never more than a quarter of the speed gravity gives in the hold (kRestFall
+// x |g| x kRestHold, 1.23 m/s on Earth): a 100 m object dropped from rest falls slower than 0.04
+// sizes per second for its whole first hold, and would end its movie before it lands.
 inline constexpr double kRestSpeed = 0.02;          // (unit: m/s)
 inline constexpr double kRestSpeedPerSize = 0.04;   // (unit: 1/s: object sizes per second)
 inline constexpr double kRestHold = 0.5;            // (unit: s)
 inline constexpr double kRestFall = 0.25;           // (unit: 1)
 double rest_speed(const Model& model, double gravity);  // gravity: |g| (unit: m/s^2); returns m/s
+// Once the object has touched the scene (a piece in contact with the ground, a collider, a
+// kinematic body or a projectile) or broken, the cap no longer applies: it kept a falling object
+// from resting, and a 600 m object's last piece sliding at 6 m/s (0.01 sizes per second) is still
+// to the eye (unit: m/s).
+double rest_speed_landed(const Model& model);
 
 }  // namespace shatter

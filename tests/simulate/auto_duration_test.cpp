@@ -97,6 +97,28 @@ TEST(AutoDuration, ALargeObjectFallingIsNotAtRest) {
     EXPECT_GT((r.trajectory.frames() - 1) / r.trajectory.fps, std::sqrt(2 * 1.5 / 9.81) + kRestHold);
 }
 
+// Once it has landed, the cap is off: the 100 m cube slides on without friction at 3 m/s, over
+// the capped 1.23 m/s but under its own 0.04 x 173.2 = 6.93 m/s (a few pixels a second in a movie
+// that frames it), so it rests one hold after the landing instead of running to max_duration.
+TEST(AutoDuration, ALargeObjectThatHasLandedRestsAtItsOwnSpeed) {
+    const Model cube = box_grid(1, 1, 1, 100.0, Vec3(-50, 0, -50), 2400, 2);
+    EXPECT_NEAR(rest_speed_landed(cube), 0.04 * std::sqrt(3.0) * 100, 1e-9);
+    SimulationInput in = dropped_plate();
+    in.object.pose.position = Vec3(0, 1.5, 0);
+    in.object.pose.rotation_deg = Vec3::Zero();
+    in.object.velocity = Vec3(3, 0, 0);
+    in.material.surface = SurfaceSettings{0, 0};
+    in.scene.ground_surface = SurfaceSettings{0, 0};
+    const SimulationResult r = simulate(cube, in, "test");
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    const double landing = std::sqrt(2 * 1.5 / 9.81);
+    EXPECT_GT(r.rest_time, landing - 1.0 / 30);  // the hold begins at a frame up to one before it lands
+    EXPECT_LT(r.rest_time, landing + 1.0 / 30);
+    const Trajectory& t = r.trajectory;
+    const double speed = double(t.pose(t.frames() - 1, 0).position.x() - t.pose(t.frames() - 2, 0).position.x()) * t.fps;
+    EXPECT_NEAR(speed, 3.0, 0.01);  // still sliding: at rest by its size, not stopped
+}
+
 TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
     SimulationInput in = dropped_plate();
     in.simulate.max_duration = 0.2;  // still falling at 0.2 s (lands at 0.25 s)
