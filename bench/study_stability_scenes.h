@@ -124,19 +124,27 @@ inline StudyCase hanging_case(double mass_ratio, uint32_t links = 6, bool altern
 // constraints) standing in the xy plane, hanging from its two top corners, no ground; never
 // breaks under its weight (strength 10 x the corner's static load). Stable: no break, no
 // fly-apart, kinetic energy over the last 0.2 s under 10% of its peak. (Direct joints: ~30 s a run.)
-inline StudyCase grid_case(uint32_t n = 30, double duration = 0.5) {
+// A plate of n x n cubes of `edge` (2 x 2 constraints per face) turned 90 degrees about x to stand
+// in the xy plane (world y = -model z, world z = model y), no ground.
+inline StudyCase plate_standing(const std::string& name, uint32_t n, double edge, double density) {
     GenerateSettings g = default_generate(GenerateKind::Plate);
     g.count = n;
-    g.size = Vec3(0.01, 0.01, 0.01);
+    g.size = Vec3(edge, edge, edge);
     g.constraints_per_side = 2;
-    g.density = 1200;
+    g.density = density;
     StudyCase c;
-    c.scene = "grid";
+    c.scene = name;
     c.model = generate_model(g);
+    c.input.object.pose.rotation_deg = Vec3(90, 0, 0);
+    c.input.scene.ground = false;
+    return c;
+}
+
+inline StudyCase grid_case(uint32_t n = 30, double duration = 0.5) {
+    const double edge = 0.01;
+    StudyCase c = plate_standing("grid", n, edge, 1200);
     SimulationInput& in = c.input;
-    in.object.pose.rotation_deg = Vec3(90, 0, 0);  // the plate's xz plane into xy
     in.object.pose.position = Vec3(0, 1, 0);
-    in.scene.ground = false;
     // The two corner cubes with the largest y after the rotation: in the model frame, the row
     // z = min (x = min and x = max); the plate's piece order is not assumed.
     uint32_t a = 0, b = 0;
@@ -156,7 +164,7 @@ inline StudyCase grid_case(uint32_t n = 30, double duration = 0.5) {
     for (const Piece& p : c.model.pieces) mass += p.mass.mass;
     in.material.stiffness = 1e10;
     in.material.damping = 0;
-    in.material.strength = 10 * 0.5 * mass * 9.81 / (g.size.x() * g.size.y());
+    in.material.strength = 10 * 0.5 * mass * 9.81 / (edge * edge);
     in.material.alpha = 1;
     in.simulate.duration = duration;
     in.simulate.fps = 120;
@@ -219,21 +227,11 @@ inline Vec3 wall_hit_point(uint32_t i) {
 }
 
 inline StudyCase wall_case(double strength = 2e6) {
-    GenerateSettings g = default_generate(GenerateKind::Plate);
-    g.count = kWallCubes;
-    g.size = Vec3(kWallEdge, kWallEdge, kWallEdge);
-    g.constraints_per_side = 2;
-    g.density = 2400;
-    StudyCase c;
-    c.scene = "wall";
-    c.model = generate_model(g);
-    // The plate's model frame has its cubes in x and z and its thickness along y. Turned 90
-    // degrees about x (world y = -model z, world z = model y) and placed on its base: the wall
-    // stands on y = 0 centred on x = 0 and z = 0, its front face at z = -kWallEdge / 2.
+    // Placed on its base: the wall stands on y = 0 centred on x = 0 and z = 0, its front face at
+    // z = -kWallEdge / 2; its bottom row (the largest model z) is fixed.
+    StudyCase c = plate_standing("wall", kWallCubes, kWallEdge, 2400);
     SimulationInput& in = c.input;
-    in.object.pose.rotation_deg = Vec3(90, 0, 0);
     in.object.place = Placement::Base;
-    in.scene.ground = false;
     double bottom = -INFINITY;
     for (const Piece& p : c.model.pieces) bottom = std::max(bottom, p.mass.center.z());
     for (uint32_t p = 0; p < c.model.pieces.size(); ++p)
