@@ -303,16 +303,16 @@ double rest_speed(const Model& model, double gravity) {
 }
 
 double largest_joined_mass_ratio(const Model& model, uint32_t* heavier, uint32_t* lighter) {
-    double largest = 1;
+    double largest = 0;
     for (const Constraint& c : model.constraints) {
         const double ma = model.pieces[c.piece_a].mass.mass, mb = model.pieces[c.piece_b].mass.mass;
         const double lo = std::min(ma, mb), hi = std::max(ma, mb);
-        if (!(lo > 0) || hi <= largest * lo) continue;
+        if (!(lo > 0) || !(hi > largest * lo)) continue;
         largest = hi / lo;
         if (heavier) *heavier = ma >= mb ? c.piece_a : c.piece_b;
         if (lighter) *lighter = ma >= mb ? c.piece_b : c.piece_a;
     }
-    return largest;
+    return std::max(largest, 1.0);
 }
 
 bool solves_joints_directly(const Model& model, const SimulateSettings& s) {
