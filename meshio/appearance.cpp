@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/isolated.h"
 #include "core/model_io.h"
+#include "core/utf8.h"
 #include "meshio/mesh_load.h"
 
 namespace shatter {
@@ -60,7 +61,7 @@ Material read_material(const aiScene& scene, const aiMaterial& m, unsigned index
                        std::vector<std::string>& warnings) {
     Material out;
     aiString name;
-    out.name = m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : fmt::format("material_{}", index);
+    out.name = m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? to_utf8(name.C_Str()) : fmt::format("material_{}", index);
     aiColor4D c(1, 1, 1, 1);
     // assimp's default material (grey 0.6, made for meshes that name none) is white here: such a
     // mesh shows its vertex colours as they are, or nothing beyond its shape (Appearance::plain).
@@ -87,7 +88,7 @@ Material read_material(const aiScene& scene, const aiMaterial& m, unsigned index
             return out;
         }
         out.texture.assign(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth);
-        out.texture_name = tex_name;
+        out.texture_name = to_utf8(tex_name);
     } else {
         const std::string file = find_texture_file(path, tex_name);
         if (file.empty()) {
@@ -97,7 +98,7 @@ Material read_material(const aiScene& scene, const aiMaterial& m, unsigned index
             return out;
         }
         out.texture = read_whole(file);
-        out.texture_name = std::filesystem::path(file).filename().string();
+        out.texture_name = to_utf8(std::filesystem::path(file).filename().string());
         if (out.texture.empty()) {
             warnings.push_back(fmt::format("{}: its texture '{}' is empty or unreadable; drawn in its base colour "
                                            "(fix: re-export the image)", where, file));

@@ -58,6 +58,7 @@
 #include "core/error.h"
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
+#include "core/utf8.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
 #include "render/png_io.h"
@@ -154,7 +155,7 @@ struct SceneParts {
     // included), so the outer material's factor is white.
     unsigned model_material(const Model& model, uint32_t m, FaceKind kind, const RenderSettings& look, bool vertex_colours) {
         const std::string name = fmt::format("{}_{}", model.materials[m].name.empty() ? fmt::format("material_{}", m)
-                                                                                      : model.materials[m].name,
+                                                                                      : to_utf8(model.materials[m].name),
                                              kind_name(kind));
         auto [it, added] = material_index.try_emplace(fmt::format("{}#{}", m, kind_name(kind)), unsigned(materials.size()));
         if (!added) return it->second;
@@ -255,8 +256,8 @@ void add_textures(SceneParts& parts, const Model& model) {
         tex->pcData = new aiTexel[(bytes.size() + sizeof(aiTexel) - 1) / sizeof(aiTexel)];
         std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(tex->pcData));
         std::copy(hint.begin(), hint.end(), tex->achFormatHint);
-        tex->mFilename = aiString(bytes == mat.texture ? mat.texture_name
-                                                       : std::filesystem::path(mat.texture_name).stem().string() + ".png");
+        tex->mFilename = aiString(to_utf8(bytes == mat.texture ? mat.texture_name
+                                                               : std::filesystem::path(mat.texture_name).stem().string() + ".png"));
         parts.texture_of.push_back(int(parts.textures.size()));
         parts.textures.push_back(tex);
     }
@@ -272,7 +273,7 @@ void add_prop(SceneParts& parts, const KinematicSettings& k, uint32_t i, const s
         throw_input_error(where, fmt::format("kinematic body {} ('{}') is a {}, but kinematic bodies are boxes or "
                                              "spheres", i, k.name, to_string(k.shape.kind)),
                           "simulate again with a box or sphere (docs/shot.md, [[scene.kinematic]])");
-    const std::string name = k.name.empty() ? fmt::format("prop_{}", i) : fmt::format("prop_{}_{}", i, k.name);
+    const std::string name = k.name.empty() ? fmt::format("prop_{}", i) : fmt::format("prop_{}_{}", i, to_utf8(k.name));
     const unsigned material = parts.material(name + "_colour", k.colour);
     parts.meshes.push_back(make_mesh(name, vertices.data(), vertices.size(), material));
     parts.node(name, {static_cast<unsigned>(parts.meshes.size() - 1)});

@@ -213,6 +213,8 @@ def write_run_table(results, path, workdir):
         "| job time | median %.1f s, longest %.1f s |" % (sorted(r["seconds"] for r in ok)[len(ok) // 2] if ok else 0,
                                                        max((r["seconds"] for r in ok), default=0)),
         "| runs with breaks | %d |" % sum(r["breaks"] > 0 for r in ok),
+        "| joints solved directly (`joints = \"auto\"`: joined masses more than 10 times apart) | %d |"
+        % sum(any('joints = "direct"' in a for a in r.get("auto", [])) for r in ok),
         "| injected / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
         "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
         "| every piece in view in the first frame | %d of %d |" % (sum(r["in_view_first"] == 100 for r in seen), len(seen)),
