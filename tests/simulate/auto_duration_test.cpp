@@ -119,6 +119,30 @@ TEST(AutoDuration, ALargeObjectThatHasLandedRestsAtItsOwnSpeed) {
     EXPECT_NEAR(speed, 3.0, 0.01);  // still sliding: at rest by its size, not stopped
 }
 
+// A piece far from the others rests below kRestSpeedPerSize times its distance from their centre:
+// a 1 m box (1,000 kg) turning at 0.02 rad/s in place and a 10 cm box (1 kg) 10 m away that the
+// turn sends off at 0.2 m/s (over kRestSpeed, under 0.04 x 10 m = 0.4 m/s; under half a pixel a
+// frame for any 40 degree camera that keeps it in view): at rest over the first hold, where the
+// far box alone used to run the movie to max_duration.
+TEST(AutoDuration, APieceFarFromTheOthersRestsAtASpeedInProportionToItsDistance) {
+    BoxModelBuilder b(1000);
+    b.box(Vec3::Zero(), Vec3::Constant(1.0));
+    b.box(Vec3(10, 0, 0), Vec3::Constant(0.1));
+    const Model m = b.take();
+    SimulationInput in = dropped_plate();
+    in.scene.ground = false;
+    in.scene.gravity = Vec3::Zero();
+    in.object.pose = Pose{};
+    in.object.angular_velocity = Vec3(0, 0.02, 0);
+    const SimulationResult r = simulate(m, in, "test");
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    const Trajectory& t = r.trajectory;
+    const double far_speed = double((t.pose(t.frames() - 1, 1).position - t.pose(t.frames() - 2, 1).position).norm()) * t.fps;
+    EXPECT_NEAR(far_speed, 0.02 * 10, 0.002);
+    EXPECT_NEAR(r.rest_time, 0.0, 1e-9);
+    EXPECT_EQ(t.frames(), uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9)) + 1);
+}
+
 TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
     SimulationInput in = dropped_plate();
     in.simulate.max_duration = 0.2;  // still falling at 0.2 s (lands at 0.25 s)
