@@ -197,7 +197,11 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
 // a piece trembling in place rests, one falling, creeping or turning further does not.
 // The simulation ends at the end of the first such hold, checked at frame boundaries
 // (deterministic), or at max_duration. A hold begins no earlier than the end of the frame in which
-// the object first touched the scene or broke (when it does), so that a fall does not count.
+// the object first touched the scene or broke (when it does), so that a fall does not count; no
+// piece may gather more than kRestSpeed of speed over it (a slow collapse is no rest); and a piece
+// far from the others rests below kRestSpeedPerSize times its distance from their centre of mass
+// when that is more than the rest speed (a 40 degree camera that keeps it in view sees it move
+// under half a pixel a frame; one that lets it go does not see it).
 // The rest speed is kRestSpeed, or kRestSpeedPerSize times the object's size (the diagonal of its
 // bounding box) when that is more: a 5 m object creeping at 5 cm/s moves less than half a pixel
 // a frame in a movie that frames it, and is still to the eye. But, until the object first touches
