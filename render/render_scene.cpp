@@ -70,10 +70,10 @@ RenderScene make_render_scene(const Model& model, const std::string& model_path,
                               "render with the model the trajectory was simulated from, or simulate again");
     }
     if (settings.is_object() && settings.contains("scene")) out.scene = scene_from_json(settings["scene"], trajectory_path);
-    if (trajectory.props != scene_props(out.scene).size())
+    if (const size_t props = scene_props(out.scene).size(); trajectory.props != props)
         throw_input_error(trajectory_path,
                           fmt::format("the trajectory moves {} kinematic bodies and projectiles but its scene "
-                                      "describes {}", trajectory.props, scene_props(out.scene).size()),
+                                      "describes {}", trajectory.props, props),
                           "simulate again; the file is inconsistent");
     out.collider_meshes.resize(out.scene.colliders.size());
     for (size_t i = 0; i < out.scene.colliders.size(); ++i) {

@@ -109,6 +109,13 @@ struct BulletWorld::Impl {
 
     static double stored_energy_of(const Joint& j);
 
+    // A kinematic body's or projectile's shape: a sphere or a box, owned by `shapes`.
+    btCollisionShape* prop_shape(const ShapeSettings& s) {
+        shapes.emplace_back(s.kind == ShapeKind::Sphere ? static_cast<btCollisionShape*>(new btSphereShape(btScalar(s.radius)))
+                                                        : new btBoxShape(to_bullet(0.5 * s.size)));
+        return shapes.back().get();
+    }
+
     btRigidBody* add_body(double mass, const btVector3& inertia, btCollisionShape* shape, const btTransform& t,
                           btMotionState* motion, const SurfaceSettings& surface) {
         btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), motion, shape, inertia);
@@ -180,10 +187,7 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     }
     // Props: scripted boxes and spheres.
     for (const KinematicSettings& k : setup.scene.kinematic) {
-        btCollisionShape* shape = k.shape.kind == ShapeKind::Sphere
-                                      ? static_cast<btCollisionShape*>(new btSphereShape(btScalar(k.shape.radius)))
-                                      : new btBoxShape(to_bullet(0.5 * k.shape.size));
-        m.shapes.emplace_back(shape);
+        btCollisionShape* shape = m.prop_shape(k.shape);
         const btTransform start = make_transform(rotation_matrix(k.pose.rotation_deg), Vec3::Zero());
         const KinematicSettings prop = k;
         m.motions.emplace_back(new ScriptedMotion(&time_, start, [prop](double t) { return kinematic_position(prop, t); }));
@@ -193,10 +197,7 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     }
     // Projectiles: boxes and spheres of their own mass, launched at t = 0.
     for (const ProjectileSettings& p : setup.scene.projectiles) {
-        btCollisionShape* shape = p.shape.kind == ShapeKind::Sphere
-                                      ? static_cast<btCollisionShape*>(new btSphereShape(btScalar(p.shape.radius)))
-                                      : new btBoxShape(to_bullet(0.5 * p.shape.size));
-        m.shapes.emplace_back(shape);
+        btCollisionShape* shape = m.prop_shape(p.shape);
         const double mass = projectile_mass(p);
         btVector3 inertia;
         shape->calculateLocalInertia(btScalar(mass), inertia);

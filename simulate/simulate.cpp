@@ -424,7 +424,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // its last): an object of hundreds of metres collapses under its own weight slowly at first,
     // below its size's rest speed.
     auto speed = [&](uint32_t g, uint32_t i) {
-        return double((t.pose(g, i).position - t.pose(g - 1, i).position).norm()) * in.simulate.fps;
+        return (t.pose(g, i).position - t.pose(g - 1, i).position).cast<double>().norm() * in.simulate.fps;
     };
     auto stayed = [&](uint32_t from, uint32_t to) {
         std::vector<Vec3> centres;
@@ -436,8 +436,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
             for (uint32_t g = from + 1; g <= to; ++g) {
                 const BodyPose& b = t.pose(g, i);
                 const double own = std::max(rest, kRestSpeedPerSize * (b.position.cast<double>() - centres[g - from]).norm());
-                const double step = (b.position - t.pose(g - 1, i).position).cast<double>().norm();
-                if (!(step * in.simulate.fps < own)) return false;
+                if (!(speed(g, i) < own)) return false;
                 const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
                 if (!((b.position - a.position).cast<double>().norm() + angle * radius[i] < own * kRestHold)) return false;
             }
