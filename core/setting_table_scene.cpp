@@ -407,10 +407,11 @@ SettingsSection simulate_section() {
                                 "\"iterative\": joint rows one at a time (Bullet's sequential impulses); \"direct\": "
                                 "all joint rows solved at once in every iteration (a sparse LDL^T), so their forces "
                                 "match their springs whatever the pieces' mass ratios; the contacts iterated around "
-                                "them (docs/physics.md, \"Direct joints\"); \"auto\": direct when two joined pieces' "
-                                "masses differ by more than 10 times (where iterative joints start to fail: "
-                                "docs/accuracy.md, \"The stability map\") in a model of at most 100 pieces, else "
-                                "iterative")
+                                "them, and a contact that holds a light piece under heavy joined ones through the "
+                                "joints (docs/physics.md, \"Direct joints\"); \"auto\": direct when two joined "
+                                "pieces' masses differ by more than 10 times, or two pieces of one island of joined "
+                                "pieces by more than 30 times (where iterative joints start to fail: docs/accuracy.md, "
+                                "\"The stability map\"), in a model of at most 100 pieces, else iterative")
                  .flag("--joints")
                  .json_unless_default(),
              method(),

@@ -1,6 +1,7 @@
 #include "simulate/bullet_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 #include <vector>
 
@@ -45,6 +46,20 @@ struct PieceSolver::Direct {
     // G's sparsity pattern at the last analysis: a step with the same pattern (no joint broke or
     // woke) only refactors.
     std::vector<int> outer, inner;
+    // The contact rows (and their sliding friction rows) that hold light joined bodies against
+    // bodies that do not move, solved through the joints (anchor_contacts, solve_anchored_contacts):
+    // the rows; for each its contact's place among them (-1 for a contact row), its joined body's
+    // first unknown and its Jacobian there; per row of the contact and friction pools whether it is
+    // one of them; W = J G^-1 J^T over them.
+    std::vector<btSolverConstraint*> anchored;
+    std::vector<int> anchored_normal;
+    std::vector<int> anchored_at;  // the row's joined body's first unknown
+    std::vector<Eigen::Matrix<double, 6, 1>> anchored_jacobian;  // the row's Jacobian on it
+    std::vector<char> anchored_contact, anchored_friction;
+    Eigen::MatrixXd W, columns, response;
+    Eigen::VectorXd velocity, start;
+    std::vector<int> parent, slot;
+    std::vector<double> island_mass;
     // True when G's pattern (outer, inner) is the one analysed last; records it otherwise.
     bool ok_pattern(const int* o, int no, const int* i, int ni) {
         if (int(outer.size()) == no && int(inner.size()) == ni && std::equal(o, o + no, outer.begin()) &&
@@ -153,13 +168,21 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
     const auto skip = [joined](const btSolverConstraint& row) {
         return joined && (*joined)[size_t(row.m_solverBodyIdA)] < 0 && (*joined)[size_t(row.m_solverBodyIdB)] < 0;
     };
+    // The contacts that hold joined pieces against the ground first, through the joints; the
+    // others one row at a time.
+    const bool anchored = direct_ && direct_system_->ok && !direct_system_->anchored.empty();
+    if (anchored) add(solve_anchored_contacts());
+    const std::vector<char>& contact_done = direct_system_->anchored_contact;
+    const std::vector<char>& friction_done = direct_system_->anchored_friction;
     for (int j = 0; j < m_tmpSolverContactConstraintPool.size(); ++j) {
-        btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
-        if (!skip(row)) add(solve_row(row, false));
+        const int r = m_orderTmpConstraintPool[j];
+        btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
+        if (!skip(row) && !(anchored && contact_done[size_t(r)])) add(solve_row(row, false));
     }
     for (int j = 0; j < m_tmpSolverContactFrictionConstraintPool.size(); ++j) {
-        btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[j]];
-        if (skip(row)) continue;
+        const int r = m_orderFrictionConstraintPool[j];
+        btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[r];
+        if (skip(row) || (anchored && friction_done[size_t(r)])) continue;
         const btScalar normal = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
         if (normal > btScalar(0)) {
             row.m_lowerLimit = -(row.m_friction * normal);
@@ -402,6 +425,163 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
     return largest;
 }
 
+// The contacts that hold a light joined piece against what does not move (the ground, a kinematic
+// prop), for solve_anchored_contacts. A contact row between a joined body and a body that does not
+// move qualifies when the body weighs under 1 / kAnchoredGain of its joined island (the pieces
+// its joints connect it to, through others) and the row's effective mass through the joints,
+// 1 / (J G^-1 J^T), is over kAnchoredGain times its own, 1 / (J M^-1 J^T): the ratio at which
+// one row at a time stops converging in the stability map's rig (docs/accuracy.md section 6).
+// Its sliding friction rows go with it. G^-1 is needed on those bodies' unknowns only: six
+// back-substitutions per body (at most kMaxAnchoredBodies, first met first), from which
+// W = J G^-1 J^T over the rows.
+void PieceSolver::anchor_contacts() {
+    Direct& d = *direct_system_;
+    d.anchored.clear();
+    d.anchored_normal.clear();
+    d.anchored_at.clear();
+    d.anchored_jacobian.clear();
+    d.anchored_contact.assign(size_t(m_tmpSolverContactConstraintPool.size()), 0);
+    d.anchored_friction.assign(size_t(m_tmpSolverContactFrictionConstraintPool.size()), 0);
+    const int count = int(d.bodies.size());
+    // The joined islands' masses (union-find over G's off-diagonal blocks).
+    std::vector<int>& parent = d.parent;
+    parent.resize(size_t(count));
+    for (int i = 0; i < count; ++i) parent[size_t(i)] = i;
+    const auto find = [&parent](int i) {
+        while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+        return i;
+    };
+    for (const Direct::Block& b : d.blocks)
+        if (b.row != b.col) parent[size_t(find(b.row / 6))] = find(b.col / 6);
+    std::vector<double>& island = d.island_mass;
+    island.assign(size_t(count), 0.0);
+    for (int i = 0; i < count; ++i) island[size_t(find(i))] += d.mass[size_t(i)](0, 0);
+    const auto still = [this](int id) {
+        const btSolverBody& body = m_tmpSolverBodyPool[id];
+        return !body.m_originalBody || body.internalGetInvMass().isZero();
+    };
+    // Candidate contacts and their bodies.
+    std::vector<int>& slot = d.slot;  // per joined body: its place among the candidates' bodies, or -1
+    slot.assign(size_t(count), -1);
+    std::vector<int> bodies, candidates;
+    for (int r = 0; r < m_tmpSolverContactConstraintPool.size(); ++r) {
+        const btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
+        const int a = d.body_index[size_t(row.m_solverBodyIdA)], b = d.body_index[size_t(row.m_solverBodyIdB)];
+        int k = -1;
+        if (a >= 0 && b < 0 && still(row.m_solverBodyIdB)) k = a;
+        if (b >= 0 && a < 0 && still(row.m_solverBodyIdA)) k = b;
+        if (k < 0) continue;
+        const int body = k / 6;
+        if (!(island[size_t(find(body))] > kAnchoredGain * d.mass[size_t(body)](0, 0))) continue;
+        if (slot[size_t(body)] < 0) {
+            if (int(bodies.size()) == kMaxAnchoredBodies) continue;
+            slot[size_t(body)] = int(bodies.size());
+            bodies.push_back(body);
+        }
+        candidates.push_back(r);
+    }
+    if (candidates.empty()) return;
+    // G^-1's columns for the candidate bodies' unknowns.
+    const int unknowns = count * 6;
+    d.columns.setZero(unknowns, 6 * Eigen::Index(bodies.size()));
+    for (size_t c = 0; c < bodies.size(); ++c)
+        d.columns.block<6, 6>(6 * bodies[c], 6 * Eigen::Index(c)).setIdentity();
+    d.response = d.ldlt.solve(d.columns);
+    std::vector<int> place(size_t(m_tmpSolverContactConstraintPool.size()), -1);
+    const auto add = [&d](btSolverConstraint& row, int normal) {
+        const bool on_a = d.body_index[size_t(row.m_solverBodyIdA)] >= 0;
+        d.anchored.push_back(&row);
+        d.anchored_normal.push_back(normal);
+        d.anchored_at.push_back(d.body_index[size_t(on_a ? row.m_solverBodyIdA : row.m_solverBodyIdB)]);
+        d.anchored_jacobian.push_back(row_jacobian(row, on_a));
+    };
+    for (int r : candidates) {
+        btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
+        const bool on_a = d.body_index[size_t(row.m_solverBodyIdA)] >= 0;
+        const int k = d.body_index[size_t(on_a ? row.m_solverBodyIdA : row.m_solverBodyIdB)];
+        const Vec6 j = row_jacobian(row, on_a);
+        const double through = j.dot(d.response.block<6, 6>(k, 6 * slot[size_t(k / 6)]) * j);
+        if (!(through * double(row.m_jacDiagABInv) * kAnchoredGain < 1)) continue;
+        place[size_t(r)] = int(d.anchored.size());
+        add(row, -1);
+    }
+    if (d.anchored.empty()) return;
+    for (int r = 0; r < m_tmpSolverContactFrictionConstraintPool.size(); ++r) {
+        btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[r];
+        const int normal = place[size_t(row.m_frictionIndex)];
+        if (normal < 0) continue;
+        d.anchored_friction[size_t(r)] = 1;
+        add(row, normal);
+    }
+    for (size_t r = 0; r < place.size(); ++r) d.anchored_contact[r] = place[r] >= 0;
+    // W_ij = J_i (G^-1)_(body i, body j) J_j^T.
+    const int m = int(d.anchored.size());
+    d.W.resize(m, m);
+    for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j)
+            d.W(i, j) = d.anchored_jacobian[size_t(i)].dot(
+                d.response.block<6, 6>(d.anchored_at[size_t(i)], 6 * slot[size_t(d.anchored_at[size_t(j)] / 6)]) *
+                d.anchored_jacobian[size_t(j)]);
+}
+
+// Projected Gauss-Seidel over the anchored contact rows with the joints' response included: a
+// row's impulse moves every joined body by G^-1 J^T dl (what the direct joint solve that follows
+// makes of it), so a light piece pressed by the heavy pieces joined to it is held as their whole
+// weight is, where one row at a time it is held only as its own mass is (a heavy stack standing on
+// a light piece slides and creeps). Each row: dl = (b - c l - J v) / (W_ii + c), clamped to the
+// row's limits (a friction row's from its contact's impulse, as Bullet bounds them), J v of every
+// row updated by W's column. kAnchoredSweeps sweeps, then the impulses go on the bodies (M^-1 J^T
+// dl, as Bullet applies them); the next joint solve spreads them as W assumed. Returns the
+// largest squared change over the row's own effective mass, as the row updates do.
+btScalar PieceSolver::solve_anchored_contacts() {
+    Direct& d = *direct_system_;
+    const int m = int(d.anchored.size());
+    d.velocity.resize(m);
+    d.start.resize(m);
+    for (int i = 0; i < m; ++i) {
+        const btSolverConstraint& row = *d.anchored[size_t(i)];
+        const btSolverBody& a = m_tmpSolverBodyPool[row.m_solverBodyIdA];
+        const btSolverBody& b = m_tmpSolverBodyPool[row.m_solverBodyIdB];
+        d.velocity[i] = double(row.m_contactNormal1.dot(a.m_deltaLinearVelocity) +
+                               row.m_relpos1CrossNormal.dot(a.m_deltaAngularVelocity) +
+                               row.m_contactNormal2.dot(b.m_deltaLinearVelocity) +
+                               row.m_relpos2CrossNormal.dot(b.m_deltaAngularVelocity));
+        d.start[i] = double(row.m_appliedImpulse);
+    }
+    for (int sweep = 0; sweep < kAnchoredSweeps; ++sweep)
+        for (int i = 0; i < m; ++i) {
+            btSolverConstraint& row = *d.anchored[size_t(i)];
+            const int normal = d.anchored_normal[size_t(i)];
+            if (normal >= 0) {
+                const btScalar held = d.anchored[size_t(normal)]->m_appliedImpulse;
+                if (!(held > btScalar(0))) continue;  // as Bullet: no friction without a push
+                row.m_lowerLimit = -(row.m_friction * held);
+                row.m_upperLimit = row.m_friction * held;
+            }
+            const double inv = 1.0 / double(row.m_jacDiagABInv);
+            const double c = double(row.m_cfm) * inv;
+            const double l = double(row.m_appliedImpulse);
+            const double next = std::clamp(l + (double(row.m_rhs) * inv - c * l - d.velocity[i]) / (d.W(i, i) + c),
+                                           double(row.m_lowerLimit), normal >= 0 ? double(row.m_upperLimit) : HUGE_VAL);
+            if (next == l) continue;
+            row.m_appliedImpulse = btScalar(next);
+            d.velocity.noalias() += d.W.col(i) * (next - l);
+        }
+    btScalar largest = 0;
+    for (int i = 0; i < m; ++i) {
+        const btSolverConstraint& row = *d.anchored[size_t(i)];
+        const btScalar delta = btScalar(double(row.m_appliedImpulse) - d.start[i]);
+        if (delta == btScalar(0)) continue;
+        btSolverBody& a = m_tmpSolverBodyPool[row.m_solverBodyIdA];
+        btSolverBody& b = m_tmpSolverBodyPool[row.m_solverBodyIdB];
+        a.internalApplyImpulse(row.m_contactNormal1 * a.internalGetInvMass(), row.m_angularComponentA, delta);
+        b.internalApplyImpulse(row.m_contactNormal2 * b.internalGetInvMass(), row.m_angularComponentB, delta);
+        const btScalar r = delta * (btScalar(1) / row.m_jacDiagABInv);
+        largest = btMax(largest, r * r);
+    }
+    return largest;
+}
+
 // Bullet's set-up of the joint rows, in the same order and with the same calls (so the same
 // bytes), with prefetching: first every constraint's row count (and its feedback cleared, its
 // impulse reset), then each constraint's rows from getInfo2.
@@ -457,6 +637,7 @@ btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodi
     most_iterations_ = btMax(most_iterations_, own);
     direct_system_->ok = false;
     if (direct_ && m_tmpSolverNonContactConstraintPool.size() > 0) factor_joints();
+    if (direct_ && direct_system_->ok) anchor_contacts();
     if (!(tolerance_ > 0) || m_tmpSolverNonContactConstraintPool.size() == 0) {
         const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
             bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);

@@ -38,6 +38,9 @@ namespace shatter {
 // chain of a heavy and a light piece is as stiff as its springs say whatever their mass ratio;
 // the contacts are still iterated around it (block Gauss-Seidel), and the joints are solved once
 // more after the last iteration, so that their forces are exact for the contacts' final impulses.
+// A contact that holds a light joined piece against the ground (or anything that does not move)
+// is solved through the joints instead: its row weighs what the joints make it weigh, so a heavy
+// stack standing on a light piece is held by its whole weight (anchor_contacts).
 // The spring law, the CFM and the damping keep their meaning (docs/physics.md, "Direct joints").
 class PieceSolver : public btSequentialImpulseConstraintSolver {
 public:
@@ -102,6 +105,12 @@ private:
     // largest correction (residual). `rows`: set each row's impulse and measure the correction
     // (else 0 is returned and the rows catch up at the next solve that sets them).
     btScalar solve_joints_directly(bool push = false, bool rows = true);
+    // Contacts that hold light joined pieces against what does not move, solved through the
+    // joints: at most this many bodies' contacts, this many sweeps per iteration.
+    static constexpr int kMaxAnchoredBodies = 32, kAnchoredSweeps = 8;
+    static constexpr double kAnchoredGain = 10;
+    void anchor_contacts();
+    btScalar solve_anchored_contacts();
     struct Direct;
     std::unique_ptr<Direct> direct_system_;
     bool direct_ = false;

@@ -315,9 +315,37 @@ double largest_joined_mass_ratio(const Model& model, uint32_t* heavier, uint32_t
     return std::max(largest, 1.0);
 }
 
+double largest_island_mass_ratio(const Model& model, uint32_t* heavier, uint32_t* lighter) {
+    std::vector<uint32_t> parent(model.pieces.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    const auto find = [&parent](uint32_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    for (const Constraint& c : model.constraints) parent[find(c.piece_a)] = find(c.piece_b);
+    // Per island (by its root): its heaviest and lightest piece with mass.
+    std::vector<uint32_t> most(parent.size(), UINT32_MAX), least(parent.size(), UINT32_MAX);
+    const auto mass = [&model](uint32_t p) { return model.pieces[p].mass.mass; };
+    for (uint32_t p = 0; p < parent.size(); ++p) {
+        if (!(mass(p) > 0)) continue;
+        const uint32_t root = find(p);
+        if (most[root] == UINT32_MAX || mass(p) > mass(most[root])) most[root] = p;
+        if (least[root] == UINT32_MAX || mass(p) < mass(least[root])) least[root] = p;
+    }
+    double largest = 1;
+    for (uint32_t root = 0; root < parent.size(); ++root) {
+        if (most[root] == UINT32_MAX || !(mass(most[root]) > largest * mass(least[root]))) continue;
+        largest = mass(most[root]) / mass(least[root]);
+        if (heavier) *heavier = most[root];
+        if (lighter) *lighter = least[root];
+    }
+    return largest;
+}
+
 bool solves_joints_directly(const Model& model, const SimulateSettings& s) {
     if (s.joints != JointSolve::Auto) return s.joints == JointSolve::Direct;
-    return model.pieces.size() <= kAutoDirectPieces && largest_joined_mass_ratio(model) > kIterativeMassRatio;
+    return model.pieces.size() <= kAutoDirectPieces && (largest_joined_mass_ratio(model) > kIterativeMassRatio ||
+                                                        largest_island_mass_ratio(model) > kIterativeIslandRatio);
 }
 
 uint32_t frame_count(const SimulateSettings& s) {
@@ -337,19 +365,26 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // the step (docs/physics.md section 5b), so neither stiffen nor the CFM check applies.
     const bool direct = solves_joints_directly(model, in.simulate);
     if (in.simulate.joints == JointSolve::Auto && !model.constraints.empty()) {
-        uint32_t heavy = 0, light = 0;
+        uint32_t heavy = 0, light = 0, island_heavy = 0, island_light = 0;
         const double ratio = largest_joined_mass_ratio(model, &heavy, &light);
-        if (direct || ratio <= kIterativeMassRatio)
+        const double island = largest_island_mass_ratio(model, &island_heavy, &island_light);
+        if (direct || (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio)) {
             spdlog::info("auto: [simulate] joints = \"{}\" (the largest mass ratio between joined pieces is {:.3g}, "
-                         "piece {} over piece {}; direct above {:g})", direct ? "direct" : "iterative", ratio, heavy,
-                         light, kIterativeMassRatio);
-        else
+                         "piece {} over piece {}, direct above {:g}; within an island of joined pieces {:.3g}, piece {} "
+                         "over piece {}, direct above {:g})",
+                         direct ? "direct" : "iterative", ratio, heavy, light, kIterativeMassRatio, island, island_heavy,
+                         island_light, kIterativeIslandRatio);
+        } else {
+            const bool joined = ratio > kIterativeMassRatio;
             spdlog::warn("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to {}), but piece "
-                         "{} is {:.3g} times as heavy as piece {} joined to it: iterative joints may break or drift "
-                         "apart where they should hold from a mass ratio of {:g} (docs/accuracy.md, \"The stability "
-                         "map\"). [simulate] joints = \"direct\" holds them, at about 2 to 5 times the simulation's "
-                         "time at 100 to 1,000 pieces", model.pieces.size(), kAutoDirectPieces, heavy, ratio, light,
-                         kIterativeMassRatio);
+                         "{} is {:.3g} times as heavy as piece {} {}: iterative joints may break or drift apart where "
+                         "they should hold from a mass ratio of {:g} (docs/accuracy.md, \"The stability map\"). "
+                         "[simulate] joints = \"direct\" holds them, at about 2 to 5 times the simulation's time at 100 "
+                         "to 1,000 pieces",
+                         model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy, joined ? ratio : island,
+                         joined ? light : island_light, joined ? "joined to it" : "in its island of joined pieces",
+                         joined ? kIterativeMassRatio : kIterativeIslandRatio);
+        }
     }
     if (in.material.stiffen && !direct) {
         // A stiffness too soft for the step (pieces smaller or heavier than the shot was tuned
