@@ -532,7 +532,7 @@ void PieceSolver::anchor_contacts() {
 // row's limits (a friction row's from its contact's impulse, as Bullet bounds them), J v of every
 // row updated by W's column. kAnchoredSweeps sweeps, then the impulses go on the bodies (M^-1 J^T
 // dl, as Bullet applies them); the next joint solve spreads them as W assumed. Returns the
-// largest squared change over the row's own effective mass, as the row updates do.
+// largest change over the row's own effective mass, as solve_row does.
 btScalar PieceSolver::solve_anchored_contacts() {
     Direct& d = *direct_system_;
     const int m = int(d.anchored.size());
@@ -576,8 +576,7 @@ btScalar PieceSolver::solve_anchored_contacts() {
         btSolverBody& b = m_tmpSolverBodyPool[row.m_solverBodyIdB];
         a.internalApplyImpulse(row.m_contactNormal1 * a.internalGetInvMass(), row.m_angularComponentA, delta);
         b.internalApplyImpulse(row.m_contactNormal2 * b.internalGetInvMass(), row.m_angularComponentB, delta);
-        const btScalar r = delta * (btScalar(1) / row.m_jacDiagABInv);
-        largest = btMax(largest, r * r);
+        largest = btMax(largest, btFabs(delta * (btScalar(1) / row.m_jacDiagABInv)));
     }
     return largest;
 }
