@@ -219,7 +219,7 @@ def write_run_table(results, path, workdir):
         "| job time | median %.1f s, longest %.1f s |" % (sorted(r["seconds"] for r in ok)[len(ok) // 2] if ok else 0,
                                                        max((r["seconds"] for r in ok), default=0)),
         "| runs with breaks | %d |" % sum(r["breaks"] > 0 for r in ok),
-        "| joints solved directly (`joints = \"auto\"`: joined masses more than 10 times apart) | %d |"
+        "| joints solved directly (`joints = \"auto\"`: joined masses more than 10 times apart, or pieces of one island more than 30) | %d |"
         % sum(any('joints = "direct"' in a for a in r.get("auto", [])) for r in ok),
         "| (injected + held) / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
         "| runs ending with energy held in cracks not yet opened | %d (%.0f%% of alpha x stored at most) |"

@@ -426,7 +426,8 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
 }
 
 // The contacts that hold a light joined piece against what does not move (the ground, a kinematic
-// prop), for solve_anchored_contacts. A contact row between a joined body and a body that does not
+// prop), for solve_anchored_contacts. A resting contact row (its bodies' speed along its normal at
+// most kAnchoredRestSpeed before the solve) between a joined body and a body that does not
 // move qualifies when the body weighs under 1 / kAnchoredGain of its joined island (the pieces
 // its joints connect it to, through others) and the row's effective mass through the joints,
 // 1 / (J G^-1 J^T), is over kAnchoredGain times its own, 1 / (J M^-1 J^T): the ratio at which
@@ -471,6 +472,16 @@ void PieceSolver::anchor_contacts() {
         if (a >= 0 && b < 0 && still(row.m_solverBodyIdB)) k = a;
         if (b >= 0 && a < 0 && still(row.m_solverBodyIdA)) k = b;
         if (k < 0) continue;
+        // A resting contact only: at an impact the row's own mass is what the first instant
+        // sees (and the joints are for the fracture to load), at rest the joints carry the load.
+        const btSolverBody& sa = m_tmpSolverBodyPool[row.m_solverBodyIdA];
+        const btSolverBody& sb = m_tmpSolverBodyPool[row.m_solverBodyIdB];
+        const btScalar approach =
+            row.m_contactNormal1.dot(sa.m_linearVelocity + sa.m_externalForceImpulse) +
+            row.m_relpos1CrossNormal.dot(sa.m_angularVelocity + sa.m_externalTorqueImpulse) +
+            row.m_contactNormal2.dot(sb.m_linearVelocity + sb.m_externalForceImpulse) +
+            row.m_relpos2CrossNormal.dot(sb.m_angularVelocity + sb.m_externalTorqueImpulse);
+        if (!(btFabs(approach) <= btScalar(kAnchoredRestSpeed))) continue;
         const int body = k / 6;
         if (!(island[size_t(find(body))] > kAnchoredGain * d.mass[size_t(body)](0, 0))) continue;
         if (slot[size_t(body)] < 0) {

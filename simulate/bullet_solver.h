@@ -109,6 +109,7 @@ private:
     // joints: at most this many bodies' contacts, this many sweeps per iteration.
     static constexpr int kMaxAnchoredBodies = 32, kAnchoredSweeps = 8;
     static constexpr double kAnchoredGain = 10;
+    static constexpr double kAnchoredRestSpeed = 0.1;  // (unit: m/s) along the contact's normal
     void anchor_contacts();
     btScalar solve_anchored_contacts();
     struct Direct;

@@ -153,7 +153,7 @@ inline constexpr double kIterativeMassRatio = 10;   // (unit: 1)
 // ratios onto a light piece that a contact holds (the stability scenes' stack, heavier by the same
 // factor at each of its three joints) cascades with iterative joints at 100 from top to bottom and
 // stands at 10, where direct joints, which solve such contacts through the joints, hold it at
-// 1,000. In the corpus run it adds one mesh of 410 to the 52 the joined ratio sends to direct joints.
+// 1,000 (docs/physics.md section 5b has what it adds in the corpus run).
 inline constexpr double kIterativeIslandRatio = 30;  // (unit: 1)
 // ... for models of at most this many pieces: direct joints cost about as much as iterative ones
 // at 10 pieces, 2 times at 50 and 100, 4.6 times at 1,000 (docs/physics.md section 5b); a larger
