@@ -13,7 +13,7 @@ double piece_radius(const Piece& piece) {
     return std::sqrt(r2);
 }
 
-size_t count_fragments(const Model& model, const std::vector<bool>& broken) {
+std::vector<uint32_t> fragment_of(const Model& model, const std::vector<bool>& broken) {
     std::vector<uint32_t> parent(model.pieces.size());
     std::iota(parent.begin(), parent.end(), 0u);
     auto find = [&](uint32_t x) {
@@ -22,8 +22,14 @@ size_t count_fragments(const Model& model, const std::vector<bool>& broken) {
     };
     for (size_t c = 0; c < model.constraints.size(); ++c)
         if (c >= broken.size() || !broken[c]) parent[find(model.constraints[c].piece_a)] = find(model.constraints[c].piece_b);
+    for (uint32_t p = 0; p < parent.size(); ++p) parent[p] = find(p);
+    return parent;
+}
+
+size_t count_fragments(const Model& model, const std::vector<bool>& broken) {
+    const std::vector<uint32_t> group = fragment_of(model, broken);
     size_t groups = 0;
-    for (uint32_t p = 0; p < parent.size(); ++p) groups += find(p) == p;
+    for (uint32_t p = 0; p < group.size(); ++p) groups += group[p] == p;
     return groups;
 }
 

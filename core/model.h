@@ -105,8 +105,12 @@ struct Model {
 // it is from the point it turns about.
 double piece_radius(const Piece& piece);
 
-// How many groups of pieces the constraints that are not `broken` (one flag per constraint) still
-// hold together: the fragments. Pieces joined to nothing count one each.
+// Per piece, one piece of its group: the groups of pieces that the constraints not `broken` (one
+// flag per constraint; none when empty) hold together, the fragments. A piece joined to nothing
+// is its own group; two pieces are in one group when they name the same piece.
+std::vector<uint32_t> fragment_of(const Model& model, const std::vector<bool>& broken = {});
+
+// How many fragments (fragment_of) the constraints that are not `broken` leave.
 size_t count_fragments(const Model& model, const std::vector<bool>& broken);
 
 }  // namespace shatter

@@ -316,24 +316,18 @@ double largest_joined_mass_ratio(const Model& model, uint32_t* heavier, uint32_t
 }
 
 double largest_island_mass_ratio(const Model& model, uint32_t* heavier, uint32_t* lighter) {
-    std::vector<uint32_t> parent(model.pieces.size());
-    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-    const auto find = [&parent](uint32_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    };
-    for (const Constraint& c : model.constraints) parent[find(c.piece_a)] = find(c.piece_b);
-    // Per island (by its root): its heaviest and lightest piece with mass.
-    std::vector<uint32_t> most(parent.size(), UINT32_MAX), least(parent.size(), UINT32_MAX);
+    const std::vector<uint32_t> island = fragment_of(model);
+    // Per island (by the piece that names it): its heaviest and lightest piece with mass.
+    std::vector<uint32_t> most(island.size(), UINT32_MAX), least(island.size(), UINT32_MAX);
     const auto mass = [&model](uint32_t p) { return model.pieces[p].mass.mass; };
-    for (uint32_t p = 0; p < parent.size(); ++p) {
+    for (uint32_t p = 0; p < island.size(); ++p) {
         if (!(mass(p) > 0)) continue;
-        const uint32_t root = find(p);
+        const uint32_t root = island[p];
         if (most[root] == UINT32_MAX || mass(p) > mass(most[root])) most[root] = p;
         if (least[root] == UINT32_MAX || mass(p) < mass(least[root])) least[root] = p;
     }
     double largest = 1;
-    for (uint32_t root = 0; root < parent.size(); ++root) {
+    for (uint32_t root = 0; root < island.size(); ++root) {
         if (most[root] == UINT32_MAX || !(mass(most[root]) > largest * mass(least[root]))) continue;
         largest = mass(most[root]) / mass(least[root]);
         if (heavier) *heavier = most[root];
