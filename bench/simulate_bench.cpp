@@ -6,7 +6,8 @@
 // plate100),
 // then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
 // then the joint solve ("auto", as shipped, "iterative" or "direct"; [simulate] joints), then what the kicks
-// move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped).
+// move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped), then the fall ("rigid": rigid
+// flight, as shipped, or "solved": every joint solved in every step of it; [simulate] rigid_flight).
 // Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
 // constraints runs at >= 60 steps per second.
 #include <chrono>
@@ -27,11 +28,13 @@ namespace {
 uint32_t g_iterations = 20;                    // the shipped default ([simulate] iterations)
 JointSolve g_joints = JointSolve::Auto;  // the shipped default ([simulate] joints)
 KickBodiesMode g_kick_bodies = SimulateSettings{}.kick_bodies;  // the shipped default ([simulate] kick_bodies)
+bool g_rigid_flight = SimulateSettings{}.rigid_flight;           // the shipped default ([simulate] rigid_flight)
 
 void run(const char* name, const Model& model, SimulationInput in, double alpha) {
     in.material.alpha = alpha;
     in.simulate.joints = g_joints;
     in.simulate.kick_bodies = g_kick_bodies;
+    in.simulate.rigid_flight = g_rigid_flight;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     const SimulationResult r = simulate(model, in, "bench");
@@ -76,7 +79,7 @@ SimulationInput plate_drop(double duration, uint32_t n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    spdlog::set_level(spdlog::level::warn);
+    spdlog::set_level(getenv("SHATTER_BENCH_LOG") ? spdlog::level::info : spdlog::level::warn);
     const std::string only = argc > 1 ? argv[1] : "";
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
@@ -85,6 +88,7 @@ int main(int argc, char** argv) {
                    : std::string(argv[4]) == "iterative" ? JointSolve::Iterative
                                                          : JointSolve::Auto;
     if (argc > 5) g_kick_bodies = std::string(argv[5]) == "joined" ? KickBodiesMode::Joined : KickBodiesMode::Pieces;
+    if (argc > 6) g_rigid_flight = std::string(argv[6]) != "solved";
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
                 "energize_percent\n");
@@ -123,7 +127,7 @@ int main(int argc, char** argv) {
     drop.material.stiffness = 3e9;
     drop.material.strength = 2e4;
     drop.material.surface = SurfaceSettings{0.6, 0.1};
-    drop.simulate.duration = 1.5;
+    drop.simulate.duration = getenv("DUR") ? atof(getenv("DUR")) : 1.5;
     drop.simulate.substeps = 16;
     for (char a : alphas) run("bunny1000", bunny, drop, a - '0');
     }

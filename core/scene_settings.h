@@ -205,6 +205,9 @@ struct SimulateSettings {
     double max_cfm = 0.5;       // refuse settings whose constraints would need a larger CFM (unit: 1)
     BreakCriterion break_criterion = BreakCriterion::Force;  // "force" (norm) or "bullet_impulse" (per row)
     InstabilityMode on_instability = InstabilityMode::Stop;  // "stop" or "clamp" (simulate/instability.h)
+    // An object that starts without spin and touching nothing falls as one rigid body, its joints
+    // unsolved, until something comes within contact reach (simulate/bullet_world.h, rigid flight).
+    bool rigid_flight = true;
 };
 // Sets `method` and the four keys it names.
 void apply_energize_method(EnergizeMethod m, SimulateSettings& s);

@@ -471,6 +471,11 @@ SettingsSection simulate_section() {
                                      "to the limit and go on (counted and logged; a NaN still stops)")
                  .json_unless_default()
                  .flag("--on-instability"),
+             boolean("rigid_flight", at(&Shot::simulate, &SimulateSettings::rigid_flight),
+                     "an object that starts without spin and touching nothing falls as one rigid body, its joints "
+                     "unsolved (in free fall they carry no load), until something comes within contact reach; "
+                     "false: every joint is solved in every step of the fall (docs/physics.md section 6)")
+                 .json_unless_default(),
              number("max_duration", "s", at(&Shot::simulate, &SimulateSettings::max_duration), kDurationLimits,
                     "the cap of duration = \"auto\" (unused otherwise)")
                  .json([](const Shot& s, ojson& j) {

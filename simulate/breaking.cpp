@@ -7,6 +7,7 @@ namespace shatter {
 
 std::vector<Overload> find_overloads(BulletWorld& world, BreakCriterion criterion) {
     std::vector<Overload> over;
+    if (world.flying()) return over;  // no joint is solved, none loaded
     for (size_t c = 0; c < world.constraint_count(); ++c) {
         if (!world.active(c)) continue;
         const double f = world.force_on_a(c).norm();

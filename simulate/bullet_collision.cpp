@@ -98,6 +98,10 @@ void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dis
         }
         return;
     }
+    // Two bodies left out of the step (rigid flight, simulate/bullet_world.h) never collide.
+    if (!static_cast<const btCollisionObject*>(a->m_clientObject)->isActive() &&
+        !static_cast<const btCollisionObject*>(b->m_clientObject)->isActive())
+        return;
     // A pair proven apart (processCollision would do nothing) and a linked pair (which never
     // collides) are answered without touching more than the bodies' centres.
     auto& pieces = static_cast<PieceDispatcher&>(dispatcher);
@@ -109,6 +113,7 @@ void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dis
 }
 
 void PieceWorld::addConstraint(btTypedConstraint* c, bool disable_collisions_between_linked_bodies) {
+    c->setUserConstraintId(m_constraints.size());
     btDiscreteDynamicsWorld::addConstraint(c, disable_collisions_between_linked_bodies);
     const btBroadphaseProxy* a = c->getRigidBodyA().getBroadphaseHandle();
     const btBroadphaseProxy* b = c->getRigidBodyB().getBroadphaseHandle();
@@ -118,7 +123,18 @@ void PieceWorld::addConstraint(btTypedConstraint* c, bool disable_collisions_bet
 }
 
 void PieceWorld::removeConstraint(btTypedConstraint* c) {
-    btDiscreteDynamicsWorld::removeConstraint(c);
+    const int i = c->getUserConstraintId();
+    const int last = m_constraints.size() - 1;
+    if (i >= 0 && i <= last && m_constraints[i] == c) {  // btDiscreteDynamicsWorld::removeConstraint, found at i
+        m_constraints[last]->setUserConstraintId(i);
+        m_constraints.swap(i, last);
+        m_constraints.pop_back();
+        c->setUserConstraintId(-1);
+        c->getRigidBodyA().removeConstraintRef(c);
+        c->getRigidBodyB().removeConstraintRef(c);
+    } else {
+        btDiscreteDynamicsWorld::removeConstraint(c);
+    }
     const auto it = linking_.find(c);
     if (it == linking_.end()) return;
     pieces_->linked.add(it->second.first, it->second.second, -1);

@@ -195,15 +195,29 @@ public:
         : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, config), pieces_(dispatcher) {}
     // btCollisionWorld::updateSingleAabb with the shape's own padding.
     void updateAabbs() override;
-    // Bullet's, keeping the dispatcher's linked pairs (PieceDispatcher::Linked) in step.
+    // Bullet's, keeping the dispatcher's linked pairs (PieceDispatcher::Linked) in step. Each
+    // constraint's user id holds its place in the world's list, so that removing it does not
+    // search the list (Bullet's linear search: 31,000 joints, hundreds of breaks a step); the
+    // list ends in the same order as Bullet's (the last moved into the gap).
     void addConstraint(btTypedConstraint* c, bool disable_collisions_between_linked_bodies) override;
     void removeConstraint(btTypedConstraint* c) override;
+    // Takes every constraint out of the world's list, and puts them back in the same order:
+    // rigid flight (simulate/bullet_world.h), where the islands and the solve need not walk them.
+    void park_constraints() {
+        parked_ = m_constraints;
+        m_constraints.resize(0);
+    }
+    void unpark_constraints() {
+        m_constraints = parked_;
+        parked_.resize(0);
+    }
 
 private:
     PieceDispatcher* pieces_;
     std::vector<btMatrix3x3> rotation_;  // per proxy id: the body's rotation at the last updateAabbs
     // The constraints added with collisions disabled, and their bodies' proxy ids.
     std::unordered_map<const btTypedConstraint*, std::pair<int, int>> linking_;
+    btAlignedObjectArray<btTypedConstraint*> parked_;
 };
 
 // The deepest point contactPairTest found between two bodies (the most negative distance: the

@@ -105,6 +105,8 @@ struct BulletWorld::Impl {
         btVector3 gyroscopic;     // the step's change of angular velocity by Bullet's implicit gyroscopic term
     };
     std::vector<Before> before;
+    bool flying = false;      // rigid flight (BulletWorld::flying)
+    double flight_end = 0;    // (unit: s)
     // The largest joint residual after the last step and where, while nothing has changed since.
     double residual_max = 0;
     int64_t residual_worst = -1;
@@ -155,6 +157,8 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
       setup_(setup) {
     Impl& m = *impl_;
     m.dispatcher.setNearCallback(exact_aabb_near_callback);
+    // Only active bodies' boxes follow them (every body is kept active but in rigid flight).
+    m.world.setForceUpdateAllAabbs(false);
     m.gravity = setup.scene.gravity;
     m.world.setGravity(to_bullet(setup.scene.gravity));
     btContactSolverInfo& info = m.world.getSolverInfo();
@@ -227,6 +231,97 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     build_pieces(model);
     build_joints(model);
     ignore_initial_overlaps();
+    // Rigid flight, when every piece is dynamic and moves alike (the object's spin would load the
+    // joints) and nothing is within reach at the start.
+    bool alike = setup.rigid_flight && m.pieces.size() >= 2 && setup.object.angular_velocity.isZero();
+    for (const Impl::PieceBody& p : m.pieces) alike = alike && p.dynamic;
+    if (alike && !near_anything()) {
+        for (const Impl::PieceBody& p : m.pieces) p.body->forceActivationState(DISABLE_SIMULATION);
+        m.world.park_constraints();
+        m.flying = true;
+    }
+}
+
+bool BulletWorld::flying() const { return impl_->flying; }
+double BulletWorld::flight_end() const { return impl_->flying ? time_ : impl_->flight_end; }
+
+bool BulletWorld::near_anything() const {
+    const Impl& m = *impl_;
+    // The pieces' contact boxes as the broadphase pads them (PieceWorld::updateAabbs), grown once
+    // more by the largest padding: a pair the near phase could see is found with room to spare.
+    btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi = -lo;
+    btScalar pad = 0;
+    for (const Impl::PieceBody& p : m.pieces) {
+        const btCollisionShape* shape = p.body->getCollisionShape();
+        const btScalar t = shape->getContactBreakingThreshold(gContactBreakingThreshold);
+        btVector3 l, u;
+        shape->getAabb(p.body->getWorldTransform(), l, u);
+        lo.setMin(l - btVector3(t, t, t));
+        hi.setMax(u + btVector3(t, t, t));
+        pad = std::max(pad, t);
+    }
+    lo -= btVector3(pad, pad, pad);
+    hi += btVector3(pad, pad, pad);
+    // Swept over the step (fly()): a flight never ends a step within reach of anything, so what
+    // looks for contacts after a step (approach_load) finds none that a solved step would have.
+    const btScalar h = btScalar(setup_.h);
+    const auto sweep = [h](const btRigidBody& b, btVector3* l, btVector3* u) {
+        const btVector3 d = (b.getLinearVelocity() + b.getGravity() * h) * h;
+        l->setMin(*l + d);
+        u->setMax(*u + d);
+    };
+    sweep(*m.pieces.front().body, &lo, &hi);
+    for (const auto& body : m.bodies) {
+        const btRigidBody& b = *body;
+        if (b.getUserIndex() >= 0) continue;  // a piece
+        const btCollisionShape* shape = b.getCollisionShape();
+        // Where this step's collision detection will see it: a kinematic body where its script
+        // has it at the step's clock.
+        btTransform t = b.getWorldTransform();
+        if (b.isKinematicObject() && b.getMotionState()) b.getMotionState()->getWorldTransform(t);
+        if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) {
+            const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+            const btVector3 n = t.getBasis() * plane->getPlaneNormal();
+            const btVector3 on = t(plane->getPlaneNormal() * plane->getPlaneConstant());
+            btScalar lowest = 0;  // the box's least height above the plane
+            for (int i = 0; i < 3; ++i) lowest += n[i] * (n[i] > 0 ? lo[i] : hi[i]);
+            if (lowest - n.dot(on) <= 0) return true;
+            continue;
+        }
+        const btScalar r = shape->getContactBreakingThreshold(gContactBreakingThreshold);
+        btVector3 l, u;
+        shape->getAabb(t, l, u);
+        if (!b.isStaticOrKinematicObject()) sweep(b, &l, &u);  // a projectile
+        if (TestAabbAgainstAabb2(l - btVector3(r, r, r), u + btVector3(r, r, r), lo, hi)) return true;
+    }
+    return false;
+}
+
+void BulletWorld::end_flight() {
+    Impl& m = *impl_;
+    if (!m.flying) return;
+    for (const Impl::PieceBody& p : m.pieces) p.body->forceActivationState(DISABLE_DEACTIVATION);
+    m.world.unpark_constraints();
+    m.flying = false;
+    m.flight_end = time_;
+}
+
+// Bullet steps the rest of the scene, leaving out the pieces (DISABLE_SIMULATION); they move as
+// Bullet moves a free body (symplectic Euler: v += g h, then x += v h; no spin, so no turn).
+void BulletWorld::fly() {
+    Impl& m = *impl_;
+    m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
+    const btScalar h = btScalar(setup_.h);
+    for (const Impl::PieceBody& p : m.pieces) {
+        btRigidBody& b = *p.body;
+        const btVector3 v = b.getLinearVelocity() + b.getGravity() * h;
+        btTransform t = b.getWorldTransform();
+        t.setOrigin(t.getOrigin() + v * h);
+        b.setLinearVelocity(v);
+        b.setWorldTransform(t);
+        b.setInterpolationWorldTransform(t);
+        b.setInterpolationLinearVelocity(v);
+    }
 }
 
 void BulletWorld::ignore_initial_overlaps() {
@@ -277,6 +372,7 @@ void BulletWorld::release_parted_pairs() {
 }
 
 BulletWorld::~BulletWorld() {
+    end_flight();
     Impl& m = *impl_;
     for (auto& j : m.joints)
         if (j.active && j.constraint) m.world.removeConstraint(j.constraint.get());
@@ -421,7 +517,9 @@ void BulletWorld::step() {
         m.before[i] = {b.getLinearVelocity(), b.getAngularVelocity(), b.getWorldTransform(), b.getInvInertiaTensorWorld(),
                        gyroscopic ? b.computeGyroscopicImpulseImplicit_Body(btScalar(setup_.h)) : btVector3(0, 0, 0)};
     }
-    m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
+    if (m.flying && near_anything()) end_flight();
+    if (m.flying) fly();
+    else m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
     ++m.poses;
     m.account_step(setup_.h);
     release_parted_pairs();
@@ -460,7 +558,8 @@ void BulletWorld::Impl::account_step(double h_step) {
         add_work(b, double(impulse.dot(mean_velocity(b, start.linear, start.angular, start.pose.getOrigin(), p))),
                  on_pieces, on_drivers);
     };
-    for (size_t c = 0; c < joints.size(); ++c) {
+    // In rigid flight the joints were not solved (no impulse) and their pieces moved alike.
+    for (size_t c = 0; c < (flying ? 0 : joints.size()); ++c) {
         Joint& j = joints[c];
         if (!j.active || !j.constraint) continue;
         const CompliantPointConstraint& k = *j.constraint;
@@ -778,6 +877,7 @@ std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) c
 }
 
 void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks) {
+    end_flight();
     impl_->residual_known = false;
     const auto& j = impl_->joints[c];
     const uint32_t piece[2] = {j.piece_a, j.piece_b};
@@ -847,6 +947,7 @@ void BulletWorld::joined_bodies(const JoinedPieces& joined, std::vector<JoinedBo
 }
 
 void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv) {
+    end_flight();
     impl_->residual_known = false;
     for (size_t i = 0; i < pieces.size(); ++i) {
         if (!impl_->pieces[pieces[i]].dynamic) continue;

@@ -16,7 +16,8 @@
 // Pieces that overlap at the start without being joined (touching along an edge; convex parts
 // reaching into a neighbour) ignore each other until their bounding boxes part.
 // Every body carrying constraints is kept awake: a sleeping island freezes the joint feedback and
-// skips the break check.
+// skips the break check. The one exception is rigid flight (WorldSetup::rigid_flight), where no
+// joint carries load.
 #pragma once
 
 #include <array>
@@ -50,6 +51,12 @@ struct WorldSetup {
     // converge_tolerance says otherwise the step iterates until the joints' forces are within
     // kDirectTolerance of their strength, at most kDirectIterationCap x iterations.
     bool direct_joints = false;
+    // Rigid flight: an object whose dynamic pieces all move alike (no spin, none driven) and that
+    // touches nothing moves as one body, its joints unsolved, until anything comes within
+    // contact reach (BulletWorld::flying). In free fall every piece accelerates alike and no joint
+    // is loaded, so the solve would give each piece the same motion; its cost (a 1,000-piece
+    // bunny's 31,000 joints, every step of its fall) is skipped.
+    bool rigid_flight = true;
 };
 
 // The iterations of a step stop once no row changes a relative velocity by more than this: a
@@ -75,6 +82,14 @@ public:
     // The most solver iterations a batch of islands took in the last step.
     int last_step_iterations() const;
     double h() const { return setup_.h; }
+    // Rigid flight (WorldSetup::rigid_flight): the dynamic pieces still move as one body, Bullet
+    // leaving them out, their joints unsolved and their feedback zero. It ends, for good, at the
+    // start of the first step in which any piece's contact box (its bounding box grown by its
+    // contact breaking threshold, as the broadphase has it) reaches another body's (a plane: its
+    // half-space), and whenever velocities are changed from outside. flight_end(): when it ended
+    // (unit: s; 0 if it never began, the time still flying otherwise).
+    bool flying() const;
+    double flight_end() const;
     // The tolerance the joints' solve iterates to, of each joint's strength: converge_tolerance,
     // or kDirectTolerance for direct joints without it; 0: the step's own iterations only. Two
     // solves of a joint at rest can differ by twice this.
@@ -226,6 +241,9 @@ private:
     void build_joints(const Model& model);
     void ignore_initial_overlaps();
     void release_parted_pairs();
+    bool near_anything() const;  // rigid flight ends here: see flying()
+    void end_flight();
+    void fly();                  // one step of rigid flight
     struct Impl;
     std::unique_ptr<Impl> impl_;
     WorldSetup setup_;

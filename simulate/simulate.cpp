@@ -398,6 +398,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     }
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
     setup.direct_joints = direct;
+    setup.rigid_flight = in.simulate.rigid_flight;
     BulletWorld world(model, setup);
     if (!direct) check_cfm(world, model, in);
 
@@ -523,6 +524,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     t.complete = out.complete;
+    if (world.flight_end() > 0)
+        spdlog::info("simulate: the object fell as one rigid body until {:.4f} s, when something came within contact "
+                     "reach ([simulate] rigid_flight)",
+                     world.flight_end());
     if (out.breaks.empty() && !in.simulate.auto_substeps && stiffest * h > kStiffStepWarning)
         spdlog::warn("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = {:.0f}: "
                      "an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md section 7). For "

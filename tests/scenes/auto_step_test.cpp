@@ -23,27 +23,34 @@ TEST(AutoStep, TheFineStepIsThePowerOfTwoThatResolvesTheStiffestJointWithinMaxCf
     EXPECT_EQ(auto_split(block, 1e12, 1e12, true, 0.5), kAutoMaxSplit);
 }
 
-// The plaster plate dropped on the sphere: the same breaks, the first within a frame, the cubes'
-// kinetic energy 0.1 s after the first break within 10% of the fixed step's, over the shot's 1.5 s
-// in an eighth of its 45,000 steps or fewer (measured: 3,366); every break from a fine step
-// (shorter than the probe's block).
+// The plaster plate dropped on the sphere: the same breaks, the first within a frame, the same
+// fragments, over the shot's 1.5 s in an eighth of its 45,000 steps or fewer (measured: 3,303 to
+// 3,429); every break from a fine step (shorter than the probe's block). The cubes' kinetic energy
+// 0.1 s after the first break is chaotic: the drop 0.1 um higher or lower moves it by up to 30% at
+// either step (measured over six drops 0.1 um apart: 0.55 to 0.83 J automatic, 0.52 to 0.69 J
+// fixed, means 0.69 and 0.62 J). So the means over three such drops are compared, within 20%.
 TEST(AutoStep, ThePlateReproducesItsFixedStepInAnEighthOfTheSteps) {
     const Shot shot = asset("plate");
     const Model model = prescore_shot(shot, nullptr);
-    const SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
-    SimulationInput automatic = fixed;
-    automatic.simulate.auto_substeps = true;
-    const SimulationResult f = simulate(model, fixed, "plate"), a = simulate(model, automatic, "plate");
-    ASSERT_FALSE(f.breaks.empty());
-    ASSERT_FALSE(a.breaks.empty());
-    EXPECT_EQ(a.breaks.size(), f.breaks.size());
-    EXPECT_EQ(fragments(model, a), fragments(model, f));
-    EXPECT_NEAR(a.breaks.front().time, f.breaks.front().time, 1.0 / shot.simulate.fps);
-    const double ke_f = kinetic_at(f, f.breaks.front().time + 0.1), ke_a = kinetic_at(a, a.breaks.front().time + 0.1);
-    EXPECT_NEAR(ke_a, ke_f, 0.1 * ke_f);
-    EXPECT_LE(a.steps * 8, f.steps) << a.steps << " steps against " << f.steps;
-    EXPECT_GT(a.rejected_steps, 0u);
-    for (const BreakRecord& b : a.breaks) EXPECT_LT(b.step, kAutoBlock * 0.99) << "break at " << b.time;
+    double ke_fixed = 0, ke_auto = 0;
+    for (double nudge : {0.0, 1e-7, 2e-7}) {
+        SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
+        fixed.object.pose.position.y() += nudge;
+        SimulationInput automatic = fixed;
+        automatic.simulate.auto_substeps = true;
+        const SimulationResult f = simulate(model, fixed, "plate"), a = simulate(model, automatic, "plate");
+        ASSERT_FALSE(f.breaks.empty());
+        ASSERT_FALSE(a.breaks.empty());
+        EXPECT_EQ(a.breaks.size(), f.breaks.size());
+        EXPECT_EQ(fragments(model, a), fragments(model, f));
+        EXPECT_NEAR(a.breaks.front().time, f.breaks.front().time, 1.0 / shot.simulate.fps);
+        ke_fixed += kinetic_at(f, f.breaks.front().time + 0.1) / 3;
+        ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / 3;
+        EXPECT_LE(a.steps * 8, f.steps) << a.steps << " steps against " << f.steps;
+        EXPECT_GT(a.rejected_steps, 0u);
+        for (const BreakRecord& b : a.breaks) EXPECT_LT(b.step, kAutoBlock * 0.99) << "break at " << b.time;
+    }
+    EXPECT_NEAR(ke_auto, ke_fixed, 0.2 * ke_fixed);
 }
 
 // The step's choices depend only on the state: two runs give the same poses and breaks.
