@@ -85,9 +85,9 @@ public:
     // Rigid flight (WorldSetup::rigid_flight): the dynamic pieces still move as one body, Bullet
     // leaving them out, their joints unsolved and their feedback zero. It ends, for good, at the
     // start of the first step in which any piece's contact box (its bounding box grown by its
-    // contact breaking threshold, as the broadphase has it) reaches another body's (a plane: its
-    // half-space), and whenever velocities are changed from outside. flight_end(): when it ended
-    // (unit: s; 0 if it never began, the time still flying otherwise).
+    // contact breaking threshold, as the broadphase has it), swept over the step's motion, reaches
+    // another body's (a plane: its half-space), and whenever velocities are changed from outside.
+    // flight_end(): when it ended (unit: s; 0 if it never began, the time still flying otherwise).
     bool flying() const;
     double flight_end() const;
     // The tolerance the joints' solve iterates to, of each joint's strength: converge_tolerance,

@@ -524,7 +524,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     t.complete = out.complete;
-    if (world.flight_end() > 0)
+    if (world.flying())
+        spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "
+                     "reach ([simulate] rigid_flight)");
+    else if (world.flight_end() > 0)
         spdlog::info("simulate: the object fell as one rigid body until {:.4f} s, when something came within contact "
                      "reach ([simulate] rigid_flight)",
                      world.flight_end());
