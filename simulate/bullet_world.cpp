@@ -376,7 +376,20 @@ BulletWorld::~BulletWorld() {
     Impl& m = *impl_;
     for (auto& j : m.joints)
         if (j.active && j.constraint) m.world.removeConstraint(j.constraint.get());
-    for (auto& b : m.bodies) m.world.removeRigidBody(b.get());
+    // Taking a body out of the world one at a time walks every overlapping pair and moves its six
+    // edges through sweep and prune's sorted lists: quadratic in the bodies (a ninth of a
+    // 10,000-piece run). The pairs (and their collision algorithms) go in one pass instead, last
+    // first, and the bodies leave without their broadphase entries, which go with the broadphase.
+    btOverlappingPairCache* pairs = m.broadphase.getOverlappingPairCache();
+    btBroadphasePairArray& overlapping = pairs->getOverlappingPairArray();
+    while (overlapping.size() > 0) {
+        const btBroadphasePair& last = overlapping[overlapping.size() - 1];
+        pairs->removeOverlappingPair(last.m_pProxy0, last.m_pProxy1, &m.dispatcher);
+    }
+    for (auto& b : m.bodies) {
+        b->setBroadphaseHandle(nullptr);
+        m.world.removeRigidBody(b.get());
+    }
 }
 
 }  // namespace shatter
