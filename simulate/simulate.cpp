@@ -91,10 +91,17 @@ public:
 
     // The automatic step's probe: one step of the whole block, kept and processed as any step when
     // every joint carries less than kAutoRefineLoad of its strength; otherwise undone (false).
+    // The joints' forces the probe is compared with are their mean forces over the block before it
+    // (its impulse over its time): after fine steps, a joint that rings at its own frequency (which
+    // a coarse step does not resolve and damps) has the mean of its ringing, not the force of the
+    // last fine step.
     bool probe(SimulationResult& out, double block) {
         const std::shared_ptr<BulletWorld::Snapshot> start = world_.save();
         before_.resize(world_.constraint_count());
-        for (size_t c = 0; c < before_.size(); ++c) before_[c] = world_.active(c) ? world_.force_on_a(c) : Vec3::Zero();
+        for (size_t c = 0; c < before_.size(); ++c)
+            before_[c] = !world_.active(c) ? Vec3::Zero()
+                         : block_time_ > 0 ? Vec3(block_impulse_[c] / block_time_)
+                                           : world_.force_on_a(c);
         world_.set_step(block);
         world_.step();
         if (!(impact_load() < kAutoRefineLoad) || !(world_.approach_load() < kAutoRefineLoad)) {
@@ -153,6 +160,20 @@ public:
 
     double injected() const { return injected_; }  // (unit: J)
 
+    // The automatic step's record of a block: each joint's impulse over the block's steps so far,
+    // and whether the block is in fine steps.
+    void start_block(bool fine) {
+        block_impulse_.assign(world_.constraint_count(), Vec3::Zero());
+        block_time_ = 0;
+        block_fine_ = fine;
+    }
+    void add_to_block() {
+        const double h = world_.h();
+        for (size_t c = 0; c < block_impulse_.size(); ++c)
+            if (world_.active(c)) block_impulse_[c] += h * world_.force_on_a(c);
+        block_time_ += h;
+    }
+
     // The largest load of the probe step over the joints' strength, counting a sudden one at the
     // force the joint would really reach: a change df of a joint's force within a step that treats
     // it as rigid (omega h > 1) stands for a relative velocity jump whose peak force is
@@ -172,8 +193,14 @@ public:
             const double s = world_.strength(c);
             // A solve that stops at a tolerance (direct joints: kDirectTolerance of the strength)
             // leaves two forces of one joint up to twice that apart with nothing happening (the
-            // pieces of a resting object), which is not a load.
-            const double df = std::max(0.0, (f - before_[c]).norm() - 2 * world_.joint_tolerance() * s);
+            // pieces of a resting object), which is not a load. After fine steps only the load the
+            // probe's force has counts, not what it lost: fine and coarse steps share a resting
+            // object's weight differently between its joints and its contacts, and its joints can
+            // drop from a tenth of their strength to nothing between the two with nothing
+            // happening (docs/physics.md section 7a).
+            const double change = (f - before_[c]).norm();
+            const double counted = block_fine_ ? std::min(change, f.norm()) : change;
+            const double df = std::max(0.0, counted - 2 * world_.joint_tolerance() * s);
             const double peak = std::max({f.norm(), spring, omega_h * df});
             load = std::max(load, s > 0 ? peak / s : (peak > 0 ? INFINITY : 0.0));
         }
@@ -236,6 +263,9 @@ private:
     };
     std::vector<Held> held_;
     std::vector<Vec3> before_;  // the joints' forces before a probe step
+    std::vector<Vec3> block_impulse_;  // (unit: N s)
+    double block_time_ = 0;            // (unit: s)
+    bool block_fine_ = false;
 };
 
 std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model) {
@@ -495,11 +525,14 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
             for (uint32_t b = 0; b < blocks && out.complete; ++b) {
                 if (!fine) {
                     if (run.probe(out, block)) {
+                        run.start_block(false);
+                        run.add_to_block();
                         after_step();
                         continue;
                     }
                     fine = true;
                 }
+                run.start_block(true);
                 double highest = 0, lowest = 0;
                 world.joint_frequencies(&highest, &lowest);
                 const uint32_t n = auto_split(block, highest, lowest, direct, in.simulate.max_cfm);
@@ -508,6 +541,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                 double peak = 0;
                 for (uint32_t s = 0; s < n; ++s) {
                     run.substep(out);
+                    run.add_to_block();
                     peak = std::max(peak, world.max_load());
                     if (!after_step()) break;
                 }
