@@ -173,11 +173,12 @@ uint32_t frame_count(const SimulateSettings& s);
 //   - the force the solver applied;
 //   - the spring's own force k |d| from the stretch (a joint between two dynamic pieces): an
 //     unconverged solve applies less than the stretch holds;
-//   - omega h |df|, df the change of its force in the probe: a load that comes within a step that
-//     treats the joint as rigid (omega h > 1) stands for a velocity jump whose real peak force is
-//     omega h times larger (docs/physics.md section 7); only the change beyond twice the solve's
-//     tolerance (BulletWorld::joint_tolerance; direct joints: kDirectTolerance of the strength),
-//     within which two converged solves of a joint at rest can differ;
+//   - omega h |df|, df the change of its force in the probe from its mean over the block before:
+//     a load that comes within a step that treats the joint as rigid (omega h > 1) stands for a
+//     velocity jump whose real peak force is omega h times larger (docs/physics.md section 7);
+//     only the change beyond twice the solve's tolerance (BulletWorld::joint_tolerance; direct
+//     joints: kDirectTolerance of the strength), within which two converged solves of a joint at
+//     rest can differ; after fine steps, only as much of it as the probe's force has;
 //   - for a piece that the probe leaves in contact, v sqrt(k / w), v the speed at which it
 //     approaches what it touches (BulletWorld::approach_load): an impact that begins at the end
 //     of the probe, where Bullet finds the contact only in the next step.
