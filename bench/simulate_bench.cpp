@@ -7,7 +7,8 @@
 // then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
 // then the joint solve ("auto", as shipped, "iterative" or "direct"; [simulate] joints), then what the kicks
 // move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped), then the fall ("rigid": rigid
-// flight, as shipped, or "solved": every joint solved in every step of it; [simulate] rigid_flight).
+// flight, as shipped, or "solved": every joint solved in every step of it; [simulate] rigid_flight), then
+// whether pieces at rest sleep ("sleep", as shipped, or "awake"; [simulate] sleep).
 // SHATTER_BENCH_LOG set: the simulation's info lines too (the joint solve "auto" chose, where rigid
 // flight ended). Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
 // constraints runs at >= 60 steps per second.
@@ -30,12 +31,14 @@ uint32_t g_iterations = 20;                    // the shipped default ([simulate
 JointSolve g_joints = JointSolve::Auto;  // the shipped default ([simulate] joints)
 KickBodiesMode g_kick_bodies = SimulateSettings{}.kick_bodies;  // the shipped default ([simulate] kick_bodies)
 bool g_rigid_flight = SimulateSettings{}.rigid_flight;           // the shipped default ([simulate] rigid_flight)
+bool g_sleep = SimulateSettings{}.sleep;                         // the shipped default ([simulate] sleep)
 
 void run(const char* name, const Model& model, SimulationInput in, double alpha) {
     in.material.alpha = alpha;
     in.simulate.joints = g_joints;
     in.simulate.kick_bodies = g_kick_bodies;
     in.simulate.rigid_flight = g_rigid_flight;
+    in.simulate.sleep = g_sleep;
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     const SimulationResult r = simulate(model, in, "bench");
@@ -49,12 +52,12 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
         const auto* bytes = reinterpret_cast<const unsigned char*>(f);
         for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
     }
-    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f\n", name,
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u\n", name,
                 solves_joints_directly(model, in.simulate) ? "+direct" : "", model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
                 double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
-                100.0 * r.energize_seconds / s);
+                100.0 * r.energize_seconds / s, r.asleep);
     std::fflush(stdout);
 }
 
@@ -90,9 +93,10 @@ int main(int argc, char** argv) {
                                                          : JointSolve::Auto;
     if (argc > 5) g_kick_bodies = std::string(argv[5]) == "joined" ? KickBodiesMode::Joined : KickBodiesMode::Pieces;
     if (argc > 6) g_rigid_flight = std::string(argv[6]) != "solved";
+    if (argc > 7) g_sleep = std::string(argv[7]) != "awake";
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
-                "energize_percent\n");
+                "energize_percent,asleep\n");
 
     if (wanted("bunny")) {
     MeshSettings mesh;

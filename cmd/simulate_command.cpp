@@ -63,8 +63,9 @@ int run(const SimulateFlags& flags) {
             ? fmt::format("{} steps chosen as it went (substeps = \"auto\"; {} probe steps re-run finer)", r.steps,
                           r.rejected_steps)
             : fmt::format("{} steps of {:.4g} s", r.steps, 1.0 / (in.simulate.fps * in.simulate.substeps));
-    fmt::print("simulate: {} frames ({:g} s at {:g} fps), {}, {} pieces, {} of {} constraints broke\n",
-               r.trajectory.frames(), in.simulate.duration, in.simulate.fps, steps, model.pieces.size(),
+    fmt::print("simulate: {} frames ({:g} s at {:g} fps), {}, {} pieces ({} asleep at the end), {} of {} constraints "
+               "broke\n",
+               r.trajectory.frames(), in.simulate.duration, in.simulate.fps, steps, model.pieces.size(), r.asleep,
                r.breaks.size(), model.constraints.size());
     fmt::print("energy:   {:.6g} J stored in the broken constraints, {:.6g} J injected (alpha {:g})\n", stored, injected,
                in.material.alpha);

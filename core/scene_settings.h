@@ -208,6 +208,9 @@ struct SimulateSettings {
     // An object that starts without spin and touching nothing falls as one rigid body, its joints
     // unsolved, until something comes within contact reach (simulate/bullet_world.h, rigid flight).
     bool rigid_flight = true;
+    // Pieces at rest sleep (neither solved nor moved) until something touches them
+    // (simulate/simulate.h, sleep_speed).
+    bool sleep = true;
 };
 // Sets `method` and the four keys it names.
 void apply_energize_method(EnergizeMethod m, SimulateSettings& s);

@@ -476,6 +476,12 @@ SettingsSection simulate_section() {
                      "unsolved (in free fall they carry no load), until something comes within contact reach; "
                      "false: every joint is solved in every step of the fall (docs/physics.md section 6)")
                  .json_unless_default(),
+             boolean("sleep", at(&Shot::simulate, &SimulateSettings::sleep),
+                     "pieces that have moved slower than 0.01 m/s (centre, and rim as they turn) for 0.25 s, with "
+                     "everything they touch or are joined to, sleep: they are neither solved nor moved until "
+                     "something touches them or a break kicks them; a piece joined to a driven piece never sleeps; "
+                     "false: every piece is solved in every step (docs/physics.md section 6)")
+                 .json_unless_default(),
              number("max_duration", "s", at(&Shot::simulate, &SimulateSettings::max_duration), kDurationLimits,
                     "the cap of duration = \"auto\" (unused otherwise)")
                  .json([](const Shot& s, ojson& j) {

@@ -369,8 +369,9 @@ private:
         write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
         write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
         write_file_atomic(file(".instability.json"), instability_record(shot_.simulate.on_instability, sim).dump(2) + "\n");
-        spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke", sim.trajectory.frames(), sim.steps,
-                     sim.breaks.size(), model().constraints.size());
+        spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke, {} of {} pieces asleep at the end",
+                     sim.trajectory.frames(), sim.steps, sim.breaks.size(), model().constraints.size(), sim.asleep,
+                     model().pieces.size());
     }
     // After simulate (ran or up to date): what the instability guard did, and an incomplete run's exit code.
     void report_instability() {

@@ -64,6 +64,7 @@ struct BulletWorld::Impl {
         Mat3 principal = Mat3::Identity();  // body axes in the model frame
         Vec3 model_center = Vec3::Zero();
         bool dynamic = true;
+        bool may_sleep = false;  // WorldSetup::sleep_speed
     };
     struct Joint {
         std::unique_ptr<CompliantPointConstraint> constraint;  // null when both ends are scripted
@@ -113,6 +114,13 @@ struct BulletWorld::Impl {
     bool residual_known = false;
     void account_step(double h);  // after a step of h (unit: s)
     static double joint_elastic(const Joint& j);  // k |d|^2 / 2 from the poses (unit: J)
+    static bool asleep(const btCollisionObject& b) { return b.getActivationState() == ISLAND_SLEEPING; }
+    // Not in a sleeping island (joined pieces share their island).
+    static bool awake(const Joint& j) {
+        return !asleep(j.constraint->getRigidBodyA()) || !asleep(j.constraint->getRigidBodyB());
+    }
+    // Moved by the step, or in rigid flight: dynamic and not asleep.
+    static bool moving(const btRigidBody& b) { return !b.isStaticOrKinematicObject() && !asleep(b); }
     // |f - (k d + c d')| / strength: the joint's force on A against its spring's (joint_residual).
     static double spring_residual(const Joint& j, const Vec3& stretch, const Vec3& rate, const Vec3& force) {
         const Vec3 spring = j.constraint->stiffness() * stretch + j.constraint->damping() * rate;
@@ -231,6 +239,7 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
     build_pieces(model);
     build_joints(model);
     ignore_initial_overlaps();
+    if (setup.sleep_speed > 0) allow_sleep(model);
     // Rigid flight, when every piece is dynamic and moves alike (the object's spin would load the
     // joints) and nothing is within reach at the start.
     bool alike = setup.rigid_flight && m.pieces.size() >= 2 && setup.object.angular_velocity.isZero();
@@ -240,6 +249,47 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
         m.world.park_constraints();
         m.flying = true;
     }
+}
+
+void BulletWorld::allow_sleep(const Model& model) {
+    Impl& m = *impl_;
+    gDeactivationTime = btScalar(kSleepTime);  // Bullet's global; every body that must not sleep opts out
+    // Everything joined, through joints, to a driven piece stays awake.
+    std::vector<char> kept(m.pieces.size(), 0);
+    std::vector<uint32_t> queue;
+    for (size_t i = 0; i < m.pieces.size(); ++i)
+        if (!m.pieces[i].dynamic) kept[i] = 1, queue.push_back(uint32_t(i));
+    for (size_t next = 0; next < queue.size(); ++next)
+        for (uint32_t j : m.joints_of_piece[queue[next]]) {
+            const uint32_t q = m.joints[j].piece_a == queue[next] ? m.joints[j].piece_b : m.joints[j].piece_a;
+            if (!kept[q]) kept[q] = 1, queue.push_back(q);
+        }
+    const btScalar v = btScalar(setup_.sleep_speed);
+    for (size_t i = 0; i < m.pieces.size(); ++i) {
+        Impl::PieceBody& p = m.pieces[i];
+        if (kept[i]) continue;
+        p.may_sleep = true;
+        p.body->forceActivationState(ACTIVE_TAG);
+        p.body->setSleepingThresholds(v, v / btScalar(std::max(piece_radius(model.pieces[i]), 1e-6)));
+    }
+    for (btRigidBody* b : m.projectiles) {
+        btVector3 centre;
+        btScalar radius;
+        b->getCollisionShape()->getBoundingSphere(centre, radius);
+        b->forceActivationState(ACTIVE_TAG);
+        b->setSleepingThresholds(v, v / std::max(radius, btScalar(1e-6)));
+    }
+}
+
+bool BulletWorld::awake(size_t c) const {
+    const Impl::Joint& j = impl_->joints[c];
+    return j.constraint && Impl::awake(j);
+}
+
+uint32_t BulletWorld::sleeping_pieces() const {
+    uint32_t n = 0;
+    for (const Impl::PieceBody& p : impl_->pieces) n += Impl::asleep(*p.body);
+    return n;
 }
 
 bool BulletWorld::flying() const { return impl_->flying; }
@@ -300,7 +350,7 @@ bool BulletWorld::near_anything() const {
 void BulletWorld::end_flight() {
     Impl& m = *impl_;
     if (!m.flying) return;
-    for (const Impl::PieceBody& p : m.pieces) p.body->forceActivationState(DISABLE_DEACTIVATION);
+    for (const Impl::PieceBody& p : m.pieces) p.body->forceActivationState(p.may_sleep ? ACTIVE_TAG : DISABLE_DEACTIVATION);
     m.world.unpark_constraints();
     m.flying = false;
     m.flight_end = time_;
@@ -572,9 +622,10 @@ void BulletWorld::Impl::account_step(double h_step) {
                  on_pieces, on_drivers);
     };
     // In rigid flight the joints were not solved (no impulse) and their pieces moved alike.
+    // A sleeping island was neither solved nor moved: its joints' feedback is their last solve's.
     for (size_t c = 0; c < (flying ? 0 : joints.size()); ++c) {
         Joint& j = joints[c];
-        if (!j.active || !j.constraint) continue;
+        if (!j.active || !j.constraint || !awake(j)) continue;
         const CompliantPointConstraint& k = *j.constraint;
         const btRigidBody& a = k.getRigidBodyA();
         const btRigidBody& b = k.getRigidBodyB();
@@ -603,7 +654,7 @@ void BulletWorld::Impl::account_step(double h_step) {
         btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
         const auto* a = btRigidBody::upcast(manifold->getBody0());
         const auto* b = btRigidBody::upcast(manifold->getBody1());
-        if (!a || !b) continue;
+        if (!a || !b || !(moving(*a) || moving(*b))) continue;  // kept from before a sleep
         for (int p = 0; p < manifold->getNumContacts(); ++p) {
             const btManifoldPoint& point = manifold->getContactPoint(p);
             const btVector3 impulse = point.m_normalWorldOnB * point.m_appliedImpulse +
@@ -621,6 +672,13 @@ void BulletWorld::Impl::account_step(double h_step) {
         const btRigidBody& b = *bodies[i];
         if (b.isStaticOrKinematicObject() || !(b.getInvMass() > 0)) continue;
         const Before& start = before[i];
+        if (asleep(b)) {
+            // Asleep: unmoved, and its velocity set to zero as its island fell asleep (what is
+            // left at rest, below the sleeping thresholds, is taken as friction would take it).
+            const btVector3 l = start.angular * start.inv_inertia.inverse();
+            work.contacts += 0.5 * (double(start.linear.length2()) / double(b.getInvMass()) + double(l.dot(start.angular)));
+            continue;
+        }
         const btVector3 dv = b.getLinearVelocity() - start.linear;
         work.integration += 0.5 * h_step / double(b.getInvMass()) * double(b.getGravity().dot(dv));
         const btVector3& w1 = b.getAngularVelocity();
@@ -663,7 +721,7 @@ void BulletWorld::set_step(double h) {
 double BulletWorld::max_load() const {
     double load = 0;
     for (size_t c = 0; c < impl_->joints.size(); ++c) {
-        if (!active(c)) continue;
+        if (!active(c) || !awake(c)) continue;
         const double f = force_on_a(c).norm(), s = strength(c);
         load = std::max(load, s > 0 ? f / s : (f > 0 ? INFINITY : 0.0));
     }
@@ -692,7 +750,7 @@ double BulletWorld::approach_load() {
     bool any = false;
     for (size_t c = 0; c < m.joints.size(); ++c) {
         const auto& j = m.joints[c];
-        if (!j.active || !j.constraint || !(j.strength > 0)) continue;
+        if (!j.active || !j.constraint || !(j.strength > 0) || !Impl::awake(j)) continue;
         const double w = j.constraint->row_inverse_masses().maxCoeff();
         if (!(w > 0)) continue;
         const double s = std::sqrt(j.constraint->stiffness() / w) / j.strength;
@@ -736,7 +794,7 @@ double BulletWorld::joint_frequency(size_t c) const {
 void BulletWorld::joint_frequencies(double* highest, double* lowest) const {
     *highest = 0, *lowest = 0;
     for (size_t c = 0; c < impl_->joints.size(); ++c) {
-        if (!active(c) || !impl_->joints[c].constraint) continue;
+        if (!active(c) || !impl_->joints[c].constraint || !awake(c)) continue;
         const auto& j = *impl_->joints[c].constraint;
         const Vec3 w = j.row_inverse_masses();
         const double high = std::sqrt(j.stiffness() * w.maxCoeff()), low = std::sqrt(j.stiffness() * w.minCoeff());
@@ -751,6 +809,8 @@ struct BulletWorld::Snapshot {
     struct Body {
         btTransform transform, interpolation;
         btVector3 linear, angular, interpolation_linear, interpolation_angular;
+        int activation;
+        btScalar deactivation_time;
     };
     std::vector<Body> bodies;
     double time = 0;
@@ -777,7 +837,7 @@ std::shared_ptr<BulletWorld::Snapshot> BulletWorld::save() const {
     for (const auto& b : impl_->bodies)
         s->bodies.push_back({b->getWorldTransform(), b->getInterpolationWorldTransform(), b->getLinearVelocity(),
                              b->getAngularVelocity(), b->getInterpolationLinearVelocity(),
-                             b->getInterpolationAngularVelocity()});
+                             b->getInterpolationAngularVelocity(), b->getActivationState(), b->getDeactivationTime()});
     return s;
 }
 
@@ -796,6 +856,11 @@ void BulletWorld::restore(const Snapshot& s) {
         b.setAngularVelocity(v.angular);
         b.setInterpolationLinearVelocity(v.interpolation_linear);
         b.setInterpolationAngularVelocity(v.interpolation_angular);
+        // Rigid flight that ended in the undone step stays ended (its pieces' state is the flight's).
+        if (v.activation != DISABLE_SIMULATION && b.getActivationState() != DISABLE_SIMULATION) {
+            b.forceActivationState(v.activation);
+            b.setDeactivationTime(v.deactivation_time);
+        }
         if (b.getMotionState()) b.getMotionState()->setWorldTransform(v.transform);
         b.updateInertiaTensor();
     }
@@ -897,6 +962,7 @@ void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kic
     for (int s = 0; s < 2; ++s) {
         if (!impl_->pieces[piece[s]].dynamic || kicks.kick[s].magnitude == 0) continue;
         btRigidBody* body = impl_->pieces[piece[s]].body;
+        body->activate();
         body->applyImpulse(to_bullet(kicks.kick[s].impulse), to_bullet(pivot) - body->getCenterOfMassPosition());
     }
 }
@@ -965,6 +1031,7 @@ void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std:
     for (size_t i = 0; i < pieces.size(); ++i) {
         if (!impl_->pieces[pieces[i]].dynamic) continue;
         btRigidBody* b = impl_->pieces[pieces[i]].body;
+        b->activate();
         b->setLinearVelocity(b->getLinearVelocity() + to_bullet(dv[i].linear));
         b->setAngularVelocity(b->getAngularVelocity() + to_bullet(dv[i].angular));
     }
@@ -1070,6 +1137,7 @@ double BulletWorld::max_joint_residual(int64_t* worst) const {
     double most = 0;
     *worst = -1;
     for (size_t c = 0; c < impl_->joints.size(); ++c) {
+        if (!awake(c)) continue;
         const double r = joint_residual(c);
         if (r > most) most = r, *worst = int64_t(c);
     }

@@ -15,9 +15,15 @@
 // between them breaks it is removed from the world and they collide again from the next step.
 // Pieces that overlap at the start without being joined (touching along an edge; convex parts
 // reaching into a neighbour) ignore each other until their bounding boxes part.
-// Every body carrying constraints is kept awake: a sleeping island freezes the joint feedback and
-// skips the break check. The one exception is rigid flight (WorldSetup::rigid_flight), where no
-// joint carries load.
+// Sleeping (WorldSetup::sleep_speed): Bullet's islands (pieces joined to each other or touching
+// each other, with what moves them) fall asleep together once every body in them has moved slower
+// than its thresholds for kSleepTime: they are then neither solved nor moved, their contacts are
+// not looked for, and their joints keep the force of their last solve, under which they did not
+// break; the joints of a sleeping island are left out of every load, frequency and residual the
+// world reports. A body that comes to touch a sleeping island wakes all of it, and so does a
+// break's kick on any of its pieces. A piece joined to
+// a driven piece never sleeps (its joint is loaded by a script, not by contact), and neither does
+// anything joined to it.
 #pragma once
 
 #include <array>
@@ -57,7 +63,14 @@ struct WorldSetup {
     // is loaded, so the solve would give each piece the same motion; its cost (a 1,000-piece
     // bunny's 31,000 joints, every step of its fall) is skipped.
     bool rigid_flight = true;
+    // Sleeping (above): a body sleeps below this speed of its centre, and this speed over its
+    // radius of turn (its piece's radius; a projectile's shape's). 0: nothing sleeps (unit: m/s).
+    double sleep_speed = 0;
 };
+
+// How long every body of an island must stay below its sleeping thresholds before the island
+// sleeps (unit: s). Bullet's own is 2 s, longer than most shots' rest; Box2D and Jolt use 0.5 s.
+inline constexpr double kSleepTime = 0.25;
 
 // The iterations of a step stop once no row changes a relative velocity by more than this: a
 // pass that changes nothing (unit: m/s; at 1e-6 the stiffness identity's 2,000 iterations stopped
@@ -97,12 +110,16 @@ public:
     // Changes the solver step for the steps that follow (`[simulate] substeps = "auto"`): the
     // joints' ERP and CFM and Bullet's breaking thresholds follow it.
     void set_step(double h);
-    // The largest load of an active joint: |force| / strength from the last step's feedback (0
-    // when none is active).
+    // The largest load of an active joint that is awake: |force| / strength from the last step's
+    // feedback (0 when none is).
     double max_load() const;
+    // Whether the joint's pieces are awake (not in a sleeping island; see Sleeping above); and how
+    // many dynamic pieces sleep.
+    bool awake(size_t c) const;
+    uint32_t sleeping_pieces() const;
     // The load an impact that has begun would bring on the joints: contacts are found for the
     // bodies as they are now (Bullet finds them at the start of a step), and every penetrating
-    // contact point of a piece with active joints whose bodies approach at v along the normal
+    // contact point of a piece with active joints awake whose bodies approach at v along the normal
     // counts v sqrt(k / w) / strength for the stiffest of that piece's joints, the peak force a
     // sudden stop of one side of a joint brings (docs/physics.md section 7). 0 without such.
     double approach_load();
@@ -112,12 +129,12 @@ public:
     // A joint's natural frequency along its stiffest row, omega = sqrt(k w), w the row's inverse
     // effective mass with the bodies as they are now (0 when it is not active; unit: rad/s).
     double joint_frequency(size_t c) const;
-    // Over the active joints, the largest natural frequency omega = sqrt(k w) (w the largest row
+    // Over the active joints awake, the largest natural frequency omega = sqrt(k w) (w the largest row
     // inverse effective mass: the stiffest row) and the smallest (the softest row, which sets the
     // largest CFM); both 0 when none is active (unit: rad/s).
     void joint_frequencies(double* highest, double* lowest) const;
 
-    // State of every body, for rollback.
+    // State of every body (its sleep too), for rollback.
     struct Snapshot;
     std::shared_ptr<Snapshot> save() const;
     void restore(const Snapshot& s);
@@ -152,7 +169,7 @@ public:
     // force the solver applied against the force the stretch asks for, relative to the joint's
     // strength (docs/physics.md, "Joint convergence"). 0 for a joint that is not active.
     double joint_residual(size_t c) const;
-    // The largest joint_residual over the active joints, and which (-1 when there is none).
+    // The largest joint_residual over the active joints awake, and which (-1 when there is none).
     double max_joint_residual(int64_t* worst) const;
     // Removes it from the world (its pieces may collide again when no other constraint joins them).
     void remove_constraint(size_t c);
@@ -240,6 +257,7 @@ private:
     void build_pieces(const Model& model);
     void build_joints(const Model& model);
     void ignore_initial_overlaps();
+    void allow_sleep(const Model& model);  // WorldSetup::sleep_speed
     void release_parted_pairs();
     bool near_anything() const;  // rigid flight ends here: see flying()
     void end_flight();

@@ -181,7 +181,7 @@ public:
     double impact_load() const {
         double load = 0;
         for (size_t c = 0; c < world_.constraint_count(); ++c) {
-            if (!world_.active(c)) continue;
+            if (!world_.active(c) || !world_.awake(c)) continue;  // asleep: unchanged since its last solve
             const Vec3 f = world_.force_on_a(c);
             const double omega_h = world_.joint_frequency(c) * world_.h();
             // The spring's own force k |d| too: a solve that did not converge shows less than
@@ -429,6 +429,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     WorldSetup setup{in.scene, in.object, in.material, h, in.simulate.iterations, bullet_impulse};
     setup.direct_joints = direct;
     setup.rigid_flight = in.simulate.rigid_flight;
+    if (in.simulate.sleep) setup.sleep_speed = kSleepSpeed;
     BulletWorld world(model, setup);
     if (!direct) check_cfm(world, model, in);
 
@@ -558,6 +559,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         }
     }
     t.complete = out.complete;
+    out.asleep = world.sleeping_pieces();
     if (world.flying())
         spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "
                      "reach ([simulate] rigid_flight)");

@@ -106,6 +106,7 @@ struct SimulationResult {
     std::vector<EnergySample> energy;
     uint64_t steps = 0;           // solver steps kept
     uint64_t rejected_steps = 0;  // substeps = "auto": probe steps undone to be re-run finer
+    uint32_t asleep = 0;          // dynamic pieces asleep at the end ([simulate] sleep)
     // duration = "auto": when the last piece came to rest (the movie ends kRestHold later);
     // negative when the simulation reached max_duration first, or without "auto" (unit: s).
     double rest_time = -1;
@@ -222,6 +223,13 @@ inline constexpr double kRestSpeedPerSize = 0.04;   // (unit: 1/s: object sizes 
 inline constexpr double kRestHold = 0.5;            // (unit: s)
 inline constexpr double kRestFall = 0.25;           // (unit: 1)
 double rest_speed(const Model& model, double gravity);  // gravity: |g| (unit: m/s^2); returns m/s
+// Sleeping ([simulate] sleep; simulate/bullet_world.h): an island of pieces sleeps once all of
+// them have moved slower than kSleepSpeed (centre, and turning: at their radius) for kSleepTime:
+// half the least rest speed. Not in proportion to the object's size, as the rest speed may be: a
+// sleeping piece stops, and a piece drifting in free space or creeping down a slope would stop
+// where it should go on (the movie's end at rest only stops watching it). At 0.01 m/s a piece thrown
+// up is that slow for 2 ms around the top of its flight, far below kSleepTime.
+inline constexpr double kSleepSpeed = 0.5 * kRestSpeed;  // (unit: m/s)
 // Once the object has touched the scene (a piece in contact with the ground, a collider, a
 // kinematic body or a projectile) or broken, the cap no longer applies: it kept a falling object
 // from resting, and a 600 m object's last piece sliding at 6 m/s (0.01 sizes per second) is still
