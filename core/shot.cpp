@@ -56,6 +56,18 @@ void apply_shot_overrides(toml::table& root, const std::vector<std::string>& ove
 
 namespace {
 
+// A real material (kStiffMaterialModulus or more) whose step nobody chose: the automatic step and
+// direct joints.
+void step_for_stiff_material(Shot& shot) {
+    if (!shot.material.youngs_modulus || *shot.material.youngs_modulus < kStiffMaterialModulus) return;
+    shot.simulate.auto_substeps = true;
+    shot.simulate.joints = JointSolve::Direct;
+    spdlog::info("auto: [simulate] substeps = \"auto\", joints = \"direct\" (Young's modulus {:g} Pa: a real "
+                 "material's joints are too stiff for a fixed step of 1/480 s to resolve an impact; "
+                 "--set simulate.substeps=N keeps a fixed step)",
+                 *shot.material.youngs_modulus);
+}
+
 Shot read_shot(toml::table& root, const std::string& path, const std::vector<std::string>& overrides) {
     apply_shot_overrides(root, overrides);
     Shot shot;
@@ -79,6 +91,9 @@ Shot read_shot(toml::table& root, const std::string& path, const std::vector<std
         read_settings_section(settings, s, shot);
     }
     top.finish();
+    // A shot that sets neither key leaves the step to the material.
+    const toml::table* simulate = root.get_as<toml::table>("simulate");
+    if (!simulate || (!simulate->contains("substeps") && !simulate->contains("joints"))) step_for_stiff_material(shot);
     return shot;
 }
 
@@ -105,15 +120,8 @@ Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::
         return std::any_of(overrides.begin(), overrides.end(),
                            [key](const std::string& o) { return o.rfind(key, 0) == 0; });
     };
-    if (shot.material.youngs_modulus && *shot.material.youngs_modulus >= kStiffMaterialModulus &&
-        !overridden("simulate.substeps=") && !overridden("simulate.joints=")) {
-        shot.simulate.auto_substeps = true;
-        shot.simulate.joints = JointSolve::Direct;
-        spdlog::info("auto: [simulate] substeps = \"auto\", joints = \"direct\" (Young's modulus {:g} Pa: a real "
-                     "material's joints are too stiff for the default shot's fixed step to resolve an impact; "
-                     "--set simulate.substeps=N keeps a fixed step)",
-                     *shot.material.youngs_modulus);
-    }
+    // The default shot's own step (16 substeps) is for its soft default material.
+    if (!overridden("simulate.substeps=") && !overridden("simulate.joints=")) step_for_stiff_material(shot);
     return shot;
 }
 

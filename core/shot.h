@@ -36,7 +36,9 @@ struct Shot {
     RenderSettings render;
 };
 
-// Reads and validates a shot file. The mesh path is made relative to the current directory.
+// Reads and validates a shot file. The mesh path is made relative to the current directory. A
+// real material whose step neither the file nor the overrides set gets the automatic step and
+// direct joints (default_shot_for_mesh, below).
 // `overrides` are "SECTION.KEY=VALUE" settings that replace or add keys before validation, the
 // value written as in the file (0.5, "12mm", [0, 1, 0], false; a bare word is taken as a string):
 // `shatter run --set`, and the sweeps of a batch file. Errors in them name "--set SECTION.KEY=VALUE".
@@ -57,7 +59,8 @@ extern const char* const kDefaultShot;
 // applied as load_shot applies them. A real material (Young's modulus of at least
 // kStiffMaterialModulus, by a preset or the key) gets the automatic step and direct joints
 // (substeps = "auto", joints = "direct") unless the overrides set either: its joints are too stiff
-// for the default step to resolve an impact (docs/shot.md, "Material presets").
+// for the default step to resolve an impact (docs/shot.md, "Material presets"). So does a shot
+// file's real material when neither the file nor the overrides set either key.
 Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides = {});
 inline constexpr double kStiffMaterialModulus = 1e9;  // (unit: Pa)
 

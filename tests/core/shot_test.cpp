@@ -106,8 +106,17 @@ TEST(ShotFile, TheDefaultShotResolvesARealMaterialsJointsUnlessTheUserChoseTheSt
     const Shot joints = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.joints=iterative"});
     EXPECT_FALSE(joints.simulate.auto_substeps);
     EXPECT_EQ(joints.simulate.joints, JointSolve::Iterative);
-    // A shot file is the user's: its settings are taken as written.
+    // A shot file's settings are taken as written: the chain sets its step.
     EXPECT_FALSE(load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/chain.toml").simulate.auto_substeps);
+    // A shot file that chooses neither the step nor the joint solve leaves them to its material.
+    TempDir dir;
+    const std::string file = dir.write("s.toml", "[mesh]\npath = \"m.obj\"\n[material]\npreset = \"porcelain\"\n");
+    const Shot unset = load_shot(file);
+    EXPECT_TRUE(unset.simulate.auto_substeps);
+    EXPECT_EQ(unset.simulate.joints, JointSolve::Direct);
+    EXPECT_FALSE(load_shot(file, {"simulate.substeps=8"}).simulate.auto_substeps);
+    EXPECT_EQ(load_shot(file, {"simulate.joints=iterative"}).simulate.joints, JointSolve::Iterative);
+    EXPECT_FALSE(load_shot(file, {"material.preset=weak_cast"}).simulate.auto_substeps);
 }
 
 TEST(ShotFile, UnknownKeyNamesFileLineAndSuggestsTheKnownKey) {
