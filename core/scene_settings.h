@@ -209,7 +209,7 @@ struct SimulateSettings {
     // unsolved, until something comes within contact reach (simulate/bullet_world.h, rigid flight).
     bool rigid_flight = true;
     // Pieces at rest sleep (neither solved nor moved) until something touches them
-    // (simulate/simulate.h, sleep_speed).
+    // (simulate/simulate.h, kSleepSpeed; simulate/bullet_world.h, kSleepTime).
     bool sleep = true;
 };
 // Sets `method` and the four keys it names.
