@@ -674,7 +674,9 @@ void BulletWorld::Impl::account_step(double h_step) {
         const Before& start = before[i];
         if (asleep(b)) {
             // Asleep: unmoved, and its velocity set to zero as its island fell asleep (what is
-            // left at rest, below the sleeping thresholds, is taken as friction would take it).
+            // left at rest, below the sleeping thresholds, is taken as friction would take it);
+            // nothing to book in the steps it sleeps through.
+            if (start.linear.isZero() && start.angular.isZero()) continue;
             const btVector3 l = start.angular * start.inv_inertia.inverse();
             work.contacts += 0.5 * (double(start.linear.length2()) / double(b.getInvMass()) + double(l.dot(start.angular)));
             continue;
