@@ -95,16 +95,20 @@ public:
     // (its impulse over its time): after fine steps, a joint that rings at its own frequency (which
     // a coarse step does not resolve and damps) has the mean of its ringing, not the force of the
     // last fine step.
-    bool probe(SimulationResult& out, double block) {
+    // `h` is the probe's length: the block's, or a part of it (the block then in steps of h).
+    bool probe(SimulationResult& out, double h) {
         const std::shared_ptr<BulletWorld::Snapshot> start = world_.save();
         before_.resize(world_.constraint_count());
         for (size_t c = 0; c < before_.size(); ++c)
             before_[c] = !world_.active(c) ? Vec3::Zero()
                          : block_time_ > 0 ? Vec3(block_impulse_[c] / block_time_)
                                            : world_.force_on_a(c);
-        world_.set_step(block);
+        world_.set_step(h);
         world_.step();
-        if (!(impact_load() < kAutoRefineLoad) || !(world_.approach_load() < kAutoRefineLoad)) {
+        const double load = impact_load();
+        const double approach = world_.approach_load();
+        other_load_ = std::max(other_load_, approach);
+        if (!(load < kAutoRefineLoad) || !(approach < kAutoRefineLoad)) {
             world_.restore(*start);
             world_.forget_contact_impulses();
             for (size_t c = 0; c < world_.constraint_count(); ++c)
@@ -160,6 +164,19 @@ public:
 
     double injected() const { return injected_; }  // (unit: J)
 
+    // After a refused probe: by how many times (a power of two) a shorter step may pass the probe's
+    // test, or 1 when none may. Only a probe refused for its joints' stretch alone (the solver's
+    // forces, their sudden changes and approaching contacts all under kAutoRefineLoad) is split: a
+    // step on joined pieces that turn parts their pivots by about (omega h)^2 |r| / 2 (docs/physics.md
+    // section 7a), which falls as the square of the step.
+    uint32_t finer_split() const {
+        if (!(other_load_ < kAutoRefineLoad) || !std::isfinite(spring_load_)) return 1;
+        uint32_t m = 2;
+        while (m < kAutoMaxSplit && !(spring_load_ / (double(m) * m) < kAutoRefineLoad)) m *= 2;
+        return m;
+    }
+    double spring_load() const { return spring_load_; }  // the last probe's, over strength
+
     // The automatic step's record of a block: each joint's impulse over the block's steps so far,
     // and whether the block is in fine steps.
     void start_block(bool fine) {
@@ -178,8 +195,9 @@ public:
     // force the joint would really reach: a change df of a joint's force within a step that treats
     // it as rigid (omega h > 1) stands for a relative velocity jump whose peak force is
     // omega h |df| (docs/physics.md section 7), where the step itself shows only df.
-    double impact_load() const {
+    double impact_load() {
         double load = 0;
+        spring_load_ = other_load_ = 0;
         for (size_t c = 0; c < world_.constraint_count(); ++c) {
             if (!world_.active(c) || !world_.awake(c)) continue;  // asleep: unchanged since its last solve
             const Vec3 f = world_.force_on_a(c);
@@ -203,6 +221,9 @@ public:
             const double df = std::max(0.0, counted - 2 * world_.joint_tolerance() * s);
             const double peak = std::max({f.norm(), spring, omega_h * df});
             load = std::max(load, s > 0 ? peak / s : (peak > 0 ? INFINITY : 0.0));
+            const double other = std::max(f.norm(), omega_h * df);
+            spring_load_ = std::max(spring_load_, s > 0 ? spring / s : (spring > 0 ? INFINITY : 0.0));
+            other_load_ = std::max(other_load_, s > 0 ? other / s : (other > 0 ? INFINITY : 0.0));
         }
         return load;
     }
@@ -263,6 +284,9 @@ private:
     };
     std::vector<Held> held_;
     std::vector<Vec3> before_;  // the joints' forces before a probe step
+    // The last probe's largest load over strength by the joints' stretch (spring_load_) and by
+    // everything else (other_load_: the solver's force, omega h |df|, approaching contacts).
+    double spring_load_ = 0, other_load_ = 0;
     std::vector<Vec3> block_impulse_;  // (unit: N s)
     double block_time_ = 0;            // (unit: s)
     bool block_fine_ = false;
@@ -505,7 +529,8 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         return true;
     };
     Progress progress("simulate", frames - 1);
-    bool fine = false;  // substeps = "auto": the next block runs in fine steps
+    bool fine = false;     // substeps = "auto": the next block runs in fine steps
+    uint32_t coarse = 1;   // and otherwise in this many steps
     auto after_step = [&] {
         guard.after_step(world);
         if (!landed && in.simulate.auto_duration && (!out.breaks.empty() || world.touches_scene())) {
@@ -514,6 +539,12 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
             hold_from = frame;
         }
         return check_stability(world, guard, run.injected(), in.simulate.on_instability, out);
+    };
+    // The fine steps per block (auto_split) for the joints as they are now.
+    auto fine_split = [&] {
+        double highest = 0, lowest = 0;
+        world.joint_frequencies(&highest, &lowest);
+        return auto_split(block, highest, lowest, direct, in.simulate.max_cfm);
     };
     for (uint32_t f = 1; f < frames && out.complete; ++f) {
         frame = f;
@@ -524,27 +555,47 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
             }
         } else {
             for (uint32_t b = 0; b < blocks && out.complete; ++b) {
-                if (!fine) {
-                    if (run.probe(out, block)) {
-                        run.start_block(false);
-                        run.add_to_block();
-                        after_step();
-                        continue;
-                    }
-                    fine = true;
-                }
-                run.start_block(true);
-                double highest = 0, lowest = 0;
-                world.joint_frequencies(&highest, &lowest);
-                const uint32_t n = auto_split(block, highest, lowest, direct, in.simulate.max_cfm);
-                world.set_step(block / n);
                 const size_t breaks = out.breaks.size();
                 double peak = 0;
-                for (uint32_t s = 0; s < n; ++s) {
-                    run.substep(out);
-                    run.add_to_block();
-                    peak = std::max(peak, world.max_load());
-                    if (!after_step()) break;
+                // Not fine: the block in `split` steps (coarse, the split kept last), each a probe.
+                uint32_t split = 1, kept = 0;
+                if (!fine) {
+                    split = coarse;
+                    double stretch = 0;  // the kept steps' largest spring load
+                    while (kept < split) {
+                        if (!run.probe(out, block / split)) {
+                            if (kept > 0) break;
+                            // The first refused: finer, where only the joints' stretch refused it.
+                            const uint32_t n = fine_split();
+                            const uint32_t finer = split * run.finer_split();
+                            if (finer == split || finer >= n) break;
+                            split = finer;
+                            continue;
+                        }
+                        if (kept == 0) run.start_block(split > 1);
+                        run.add_to_block();
+                        peak = std::max(peak, world.max_load());
+                        stretch = std::max(stretch, run.spring_load());
+                        ++kept;
+                        if (!after_step()) break;
+                    }
+                    if (!out.complete) break;
+                    // All kept: the next block in as many steps, or half as many when the stretch,
+                    // which grows as the square of the step, allows.
+                    coarse = kept < split ? 1 : split > 1 && 4 * stretch < kAutoRefineLoad ? split / 2 : split;
+                }
+                if (kept == 0) run.start_block(true);
+                if (kept < split) {
+                    // The rest of the block in fine steps.
+                    const uint32_t n = std::max(fine_split(), split);
+                    world.set_step(block / n);
+                    const uint32_t left = (split - kept) * (n / split);
+                    for (uint32_t s = 0; s < left; ++s) {
+                        run.substep(out);
+                        run.add_to_block();
+                        peak = std::max(peak, world.max_load());
+                        if (!after_step()) break;
+                    }
                 }
                 fine = !(peak < kAutoCalmLoad && out.breaks.size() == breaks);
             }
