@@ -391,7 +391,8 @@ SettingsSection simulate_section() {
              custom("substeps", "steps per frame, or \"auto\"", "8", "1 to 10000, or \"auto\"",
                     "solver steps per frame: time step h = 1 / (fps substeps). \"auto\": each frame is cut into "
                     "blocks of at most 1/480 s, each run as one step while the joints carry less than half their "
-                    "strength and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two; "
+                    "strength, in shorter steps while only their stretch (joined pieces turning) would pass half of "
+                    "it, and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two; "
                     "docs/physics.md, \"The automatic step\")",
                     read_substeps)
                  .json([](const Shot& s, ojson& j) {
