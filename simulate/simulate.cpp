@@ -574,28 +574,29 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                         }
                         if (kept == 0) run.start_block(split > 1);
                         run.add_to_block();
-                        peak = std::max(peak, world.max_load());
                         stretch = std::max(stretch, run.spring_load());
                         ++kept;
                         if (!after_step()) break;
                     }
                     if (!out.complete) break;
-                    // All kept: the next block in as many steps, or half as many when the stretch,
-                    // which grows as the square of the step, allows.
-                    coarse = kept < split ? 1 : split > 1 && 4 * stretch < kAutoRefineLoad ? split / 2 : split;
-                }
-                if (kept == 0) run.start_block(true);
-                if (kept < split) {
-                    // The rest of the block in fine steps.
-                    const uint32_t n = std::max(fine_split(), split);
-                    world.set_step(block / n);
-                    const uint32_t left = (split - kept) * (n / split);
-                    for (uint32_t s = 0; s < left; ++s) {
-                        run.substep(out);
-                        run.add_to_block();
-                        peak = std::max(peak, world.max_load());
-                        if (!after_step()) break;
+                    if (kept == split) {
+                        // All kept: the next block probes again, in as many steps, or half as many
+                        // when the stretch, which grows as the square of the step, allows.
+                        coarse = split > 1 && 4 * stretch < kAutoRefineLoad ? split / 2 : split;
+                        continue;
                     }
+                    coarse = 1;
+                }
+                // The rest of the block in fine steps.
+                if (kept == 0) run.start_block(true);
+                const uint32_t n = std::max(fine_split(), split);
+                world.set_step(block / n);
+                const uint32_t left = (split - kept) * (n / split);
+                for (uint32_t s = 0; s < left; ++s) {
+                    run.substep(out);
+                    run.add_to_block();
+                    peak = std::max(peak, world.max_load());
+                    if (!after_step()) break;
                 }
                 fine = !(peak < kAutoCalmLoad && out.breaks.size() == breaks);
             }
