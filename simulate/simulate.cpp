@@ -564,11 +564,12 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                     double stretch = 0;  // the kept steps' largest spring load
                     while (kept < split) {
                         if (!run.probe(out, block / split)) {
-                            if (kept > 0) break;
-                            // The first refused: finer, where only the joints' stretch refused it.
+                            // Refused: the rest of the block in shorter steps, where only the
+                            // joints' stretch refused it.
                             const uint32_t n = fine_split();
                             const uint32_t finer = split * run.finer_split();
                             if (finer == split || finer >= n) break;
+                            kept *= finer / split;
                             split = finer;
                             continue;
                         }

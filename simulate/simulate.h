@@ -190,8 +190,9 @@ uint32_t frame_count(const SimulateSettings& s);
 // Except where the probe was undone for the spring's k |d| alone: joined pieces that turn part
 // their pivots within a step by about (omega h)^2 |r| with no force behind it, which falls as h^2.
 // Such a block is first run in m < n steps (m the power of two that brings the stretch under
-// kAutoRefineLoad), each of them a probe; the first one undone sends the rest of the block to the
-// fine steps. The next block starts at m steps, or m / 2 when the kept steps' stretch allows it.
+// kAutoRefineLoad), each of them a probe; one undone for its stretch alone again splits the rest
+// of the block further, any other sends it to the fine steps. The next block starts at m steps,
+// or m / 2 when the kept steps' stretch allows it.
 inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
 // A run at a fixed step that breaks nothing while its stiffest joint has omega h above this is
 // warned about: an impact's peak force is then resolved to about 1 / (omega h) of itself
