@@ -195,9 +195,10 @@ public:
     // force the joint would really reach: a change df of a joint's force within a step that treats
     // it as rigid (omega h > 1) stands for a relative velocity jump whose peak force is
     // omega h |df| (docs/physics.md section 7), where the step itself shows only df.
+    // Also keeps its two parts (spring_load_, other_load_), of which it is the larger.
     double impact_load() {
-        double load = 0;
         spring_load_ = other_load_ = 0;
+        const auto over = [](double x, double s) { return s > 0 ? x / s : (x > 0 ? INFINITY : 0.0); };
         for (size_t c = 0; c < world_.constraint_count(); ++c) {
             if (!world_.active(c) || !world_.awake(c)) continue;  // asleep: unchanged since its last solve
             const Vec3 f = world_.force_on_a(c);
@@ -219,13 +220,10 @@ public:
             const double change = (f - before_[c]).norm();
             const double counted = block_fine_ ? std::min(change, f.norm()) : change;
             const double df = std::max(0.0, counted - 2 * world_.joint_tolerance() * s);
-            const double peak = std::max({f.norm(), spring, omega_h * df});
-            load = std::max(load, s > 0 ? peak / s : (peak > 0 ? INFINITY : 0.0));
-            const double other = std::max(f.norm(), omega_h * df);
-            spring_load_ = std::max(spring_load_, s > 0 ? spring / s : (spring > 0 ? INFINITY : 0.0));
-            other_load_ = std::max(other_load_, s > 0 ? other / s : (other > 0 ? INFINITY : 0.0));
+            spring_load_ = std::max(spring_load_, over(spring, s));
+            other_load_ = std::max(other_load_, over(std::max(f.norm(), omega_h * df), s));
         }
-        return load;
+        return std::max(spring_load_, other_load_);
     }
 
     // The books at the end of a frame; the residual is the frame's largest (and starts again).
@@ -559,6 +557,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                 double peak = 0;
                 // Not fine: the block in `split` steps (coarse, the split kept last), each a probe.
                 uint32_t split = 1, kept = 0;
+                uint32_t n = 0;  // the fine steps per block, once needed
                 if (!fine) {
                     split = coarse;
                     double stretch = 0;  // the kept steps' largest spring load
@@ -566,7 +565,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                         if (!run.probe(out, block / split)) {
                             // Refused: the rest of the block in shorter steps, where only the
                             // joints' stretch refused it.
-                            const uint32_t n = fine_split();
+                            n = fine_split();
                             const uint32_t finer = split * run.finer_split();
                             if (finer == split || finer >= n) break;
                             kept *= finer / split;
@@ -590,7 +589,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                 }
                 // The rest of the block in fine steps.
                 if (kept == 0) run.start_block(true);
-                const uint32_t n = std::max(fine_split(), split);
+                n = std::max(n ? n : fine_split(), split);
                 world.set_step(block / n);
                 const uint32_t left = (split - kept) * (n / split);
                 for (uint32_t s = 0; s < left; ++s) {
