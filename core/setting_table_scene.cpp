@@ -392,8 +392,9 @@ SettingsSection simulate_section() {
                     "solver steps per frame: time step h = 1 / (fps substeps). \"auto\": each frame is cut into "
                     "blocks of at most 1/480 s, each run as one step while the joints carry less than half their "
                     "strength, in shorter steps while only their stretch (joined pieces turning) would pass half of "
-                    "it, and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two; "
-                    "docs/physics.md, \"The automatic step\")",
+                    "it, and otherwise in the steps the stiffest joint needs (omega h <= 2.5, in powers of two); once "
+                    "the object has touched the scene, a calm step (loads low, every piece moving under a tenth of "
+                    "its size) spans two blocks (docs/physics.md, \"The automatic step\")",
                     read_substeps)
                  .json([](const Shot& s, ojson& j) {
                      j["substeps"] = s.simulate.auto_substeps ? ojson("auto") : ojson(s.simulate.substeps);

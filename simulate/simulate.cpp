@@ -176,6 +176,7 @@ public:
         return m;
     }
     double spring_load() const { return spring_load_; }  // the last probe's, over strength
+    double other_load() const { return other_load_; }    // the same, by everything else
 
     // The automatic step's record of a block: each joint's impulse over the block's steps so far,
     // and whether the block is in fine steps.
@@ -529,14 +530,38 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     Progress progress("simulate", frames - 1);
     bool fine = false;     // substeps = "auto": the next block runs in fine steps
     uint32_t coarse = 1;   // and otherwise in this many steps
+    bool touched = false;  // the object has touched the scene, or broken
     auto after_step = [&] {
         guard.after_step(world);
+        if (!touched && in.simulate.auto_substeps) touched = !out.breaks.empty() || world.touches_scene();
         if (!landed && in.simulate.auto_duration && (!out.breaks.empty() || world.touches_scene())) {
             landed = true;
             rest = rest_speed_landed(model);
             hold_from = frame;
         }
         return check_stability(world, guard, run.injected(), in.simulate.on_instability, out);
+    };
+    // How many blocks (a power of two, at most kAutoMaxSpan) the next probe may span after a kept
+    // step of `now` blocks: as many as keep the loads of that step, scaled to the longer one (the
+    // stretch as h^2, everything else as h), under kAutoRefineLoad, and every awake piece's travel
+    // within the step under kAutoSpanTravel of its size.
+    uint32_t span = 1;
+    uint32_t waits = 0, backoff = 1;  // blocks to run fine unprobed, and the next such wait
+    auto calm_span = [&](uint32_t now) {
+        double travel = 0;  // the largest travel per second over size
+        for (uint32_t i = 0; i < world.pieces(); ++i)
+            if (world.piece_dynamic(i) && radius[i] > 0)
+                travel = std::max(travel, world.piece_velocity(i).norm() / radius[i] +
+                                              world.piece_angular_velocity(i).norm());
+        uint32_t next = std::min(2 * now, kAutoMaxSpan);
+        while (next > 1) {
+            const double r = double(next) / now;
+            if (run.spring_load() * r * r < kAutoRefineLoad && run.other_load() * r < kAutoRefineLoad &&
+                travel * next * block < kAutoSpanTravel)
+                break;
+            next /= 2;
+        }
+        return next;
     };
     // The fine steps per block (auto_split) for the joints as they are now.
     auto fine_split = [&] {
@@ -553,12 +578,31 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
             }
         } else {
             for (uint32_t b = 0; b < blocks && out.complete; ++b) {
+                // Waiting out a stretch that the fine steps resolve and a split would not (below).
+                const bool wait = !fine && waits > 0;
+                if (wait) --waits;
+                // Calm, once the object has touched the scene: one probe over `span` blocks,
+                // aligned within the frame (before, the fall keeps the blocks' step, so that an
+                // impact comes when a fixed step of a block's length has it).
+                uint32_t over = fine || wait || coarse > 1 || !touched ? 1 : span;
+                while (over > 1 && (b % over != 0 || b + over > blocks)) over /= 2;
+                if (over > 1) {
+                    if (run.probe(out, block * over)) {
+                        run.start_block(false);
+                        run.add_to_block();
+                        b += over - 1;
+                        if (!after_step()) break;
+                        span = calm_span(over);
+                        continue;
+                    }
+                }
+                span = 1;
                 const size_t breaks = out.breaks.size();
                 double peak = 0;
                 // Not fine: the block in `split` steps (coarse, the split kept last), each a probe.
                 uint32_t split = 1, kept = 0;
                 uint32_t n = 0;  // the fine steps per block, once needed
-                if (!fine) {
+                if (!fine && !wait) {
                     split = coarse;
                     double stretch = 0;  // the kept steps' largest spring load
                     while (kept < split) {
@@ -567,6 +611,12 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                             // joints' stretch refused it.
                             n = fine_split();
                             const uint32_t finer = split * run.finer_split();
+                            if (finer >= n && finer > split) {
+                                // Refused for its stretch alone, which only the fine steps
+                                // resolve: the next 1, 2, 4, then 8 blocks go to them unprobed.
+                                waits = backoff;
+                                backoff = std::min(2 * backoff, kAutoMaxWait);
+                            }
                             if (finer == split || finer >= n) break;
                             kept *= finer / split;
                             split = finer;
@@ -583,6 +633,8 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                         // All kept: the next block probes again, in as many steps, or half as many
                         // when the stretch, which grows as the square of the step, allows.
                         coarse = split > 1 && 4 * stretch < kAutoRefineLoad ? split / 2 : split;
+                        if (split == 1) span = calm_span(1);
+                        backoff = 1;
                         continue;
                     }
                     coarse = 1;

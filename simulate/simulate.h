@@ -193,6 +193,10 @@ uint32_t frame_count(const SimulateSettings& s);
 // kAutoRefineLoad), each of them a probe; one undone for its stretch alone again splits the rest
 // of the block further, any other sends it to the fine steps. The next block starts at m steps,
 // or m / 2 when the kept steps' stretch allows it.
+// Calm steps span blocks: once the object has touched the scene (or broken), a kept one-step probe
+// lets the next probe cover two aligned blocks (at most kAutoMaxSpan) when its loads scaled to the
+// longer step (the stretch as h^2, everything else as h) stay under kAutoRefineLoad and every
+// awake piece moves under kAutoSpanTravel of its size (|v| / r + |w|) within it.
 inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
 // A run at a fixed step that breaks nothing while its stiffest joint has omega h above this is
 // warned about: an impact's peak force is then resolved to about 1 / (omega h) of itself
@@ -202,6 +206,9 @@ inline constexpr double kAutoRefineLoad = 0.5;    // of a joint's strength
 inline constexpr double kAutoCalmLoad = 0.25;     // of a joint's strength
 inline constexpr double kAutoOmegaH = 2.5;        // (unit: 1)
 inline constexpr uint32_t kAutoMaxSplit = 4096;   // fine steps per block, at most
+inline constexpr uint32_t kAutoMaxSpan = 2;       // blocks one calm step spans, at most
+inline constexpr double kAutoSpanTravel = 0.1;    // of a piece's size, at most, in a spanned step
+inline constexpr uint32_t kAutoMaxWait = 8;       // blocks run fine unprobed after a stretch only they resolve
 // The fine steps per block of length `block` for joints whose rows' frequencies span
 // [lowest, highest] (rad/s; BulletWorld::joint_frequencies): 1 with no joints.
 uint32_t auto_split(double block, double highest, double lowest, bool direct_joints, double max_cfm);

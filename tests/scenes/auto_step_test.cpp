@@ -1,5 +1,6 @@
 // substeps = "auto" (simulate/simulate.h, "The automatic step"): the fine step the stiffest joint
-// needs, and the built-in plate and chain run with it against their fixed steps of 1/30,000 s.
+// needs, and the built-in plate, chain and bunny on the sphere run with it against their fixed
+// steps (1/30,000 s; 1/480 s).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,6 +93,37 @@ TEST(AutoStep, ATurningPairRunsInTheStepsItsJointsStretchAllows) {
     for (uint32_t f = 1; f < t.frames(); ++f)
         EXPECT_NEAR((t.pose(f, 1).position - t.pose(f, 0).position).norm() - 0.02, drift, 0.05 * drift)
             << "frame " << f;
+}
+
+// The bunny on the sphere (iterative joints, all 362 of which break): its fixed step is one block
+// (1/480 s), so the automatic step saves only where a step spans two blocks: after the impact,
+// once the fragments' loads and motion are calm (each moving under a tenth of its size in the
+// step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
+// 960, undone probes counted (measured: 948 on average, 825 to 1,145), the same first break and
+// breaks, and the mean kinetic energy 0.1 s after the break within the study's 10% (measured 1.48
+// against 1.36 J).
+TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
+    const Shot shot = asset("bunny_sphere");
+    const Model model = prescore_shot(shot, nullptr);
+    double ke_fixed = 0, ke_auto = 0, steps_auto = 0, steps_fixed = 0;
+    const int drops = 8;
+    for (int i = 0; i < drops; ++i) {
+        SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
+        fixed.object.pose.position.x() += 1e-3 * i;
+        SimulationInput automatic = fixed;
+        automatic.simulate.auto_substeps = true;
+        const SimulationResult f = simulate(model, fixed, "bunny_sphere"), a = simulate(model, automatic, "bunny_sphere");
+        ASSERT_FALSE(f.breaks.empty());
+        ASSERT_FALSE(a.breaks.empty());
+        EXPECT_EQ(a.breaks.size(), f.breaks.size());
+        EXPECT_NEAR(a.breaks.front().time, f.breaks.front().time, 1.0 / shot.simulate.fps);
+        ke_fixed += kinetic_at(f, f.breaks.front().time + 0.1) / drops;
+        ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / drops;
+        steps_fixed += double(f.steps) / drops;
+        steps_auto += double(a.steps + a.rejected_steps) / drops;
+    }
+    EXPECT_LE(steps_auto, steps_fixed);
+    EXPECT_NEAR(ke_auto, ke_fixed, 0.1 * ke_fixed);
 }
 
 // The step's choices depend only on the state: two runs give the same poses and breaks.

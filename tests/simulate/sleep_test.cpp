@@ -136,9 +136,9 @@ TEST(Sleep, PiecesJoinedToADrivenPieceStayAwake) {
 // supports 8 cm apart, its joints bent by its weight. Awake, the coarse probe shares that load
 // between its joints and the supports otherwise than the fine steps did, and at porcelain's
 // stiffness (omega h in the hundreds at the probe's block) that difference reads as an impact:
-// its blocks stay in fine steps for as long as it lies there. Asleep, every block is one probe
-// step, kAutoBlock long.
-TEST(Sleep, ASleepingObjectRunsTheAutomaticStepAtOneStepPerBlock) {
+// its blocks stay in fine steps for as long as it lies there. Asleep, nothing moves and no joint
+// is counted: every step is the longest calm step, kAutoMaxSpan blocks.
+TEST(Sleep, ASleepingObjectRunsTheAutomaticStepAtItsLongestStep) {
     const Model model = box_grid(5, 1, 1, 0.02, Vec3(-0.05, 0, -0.01), 2400, 2);
     SimulationInput in;
     in.scene.ground = false;
@@ -161,9 +161,10 @@ TEST(Sleep, ASleepingObjectRunsTheAutomaticStepAtOneStepPerBlock) {
         EXPECT_TRUE(r.breaks.empty());
         return r.steps;
     };
-    // It sleeps by 0.3 s (measured: 0.27 s): from then on one step per block, 288 in 0.6 s.
+    // It sleeps by 0.3 s (measured: 0.27 s): from then on one step per kAutoMaxSpan blocks, 144 in
+    // 0.6 s.
     const uint64_t slept = run(0.4, true);
-    EXPECT_EQ(run(1.0, true) - slept, uint64_t(std::llround(0.6 / kAutoBlock)));
+    EXPECT_EQ(run(1.0, true) - slept, uint64_t(std::llround(0.6 / (kAutoMaxSpan * kAutoBlock))));
     // Awake, the 0.1 s after 0.3 s alone take more than 48 blocks of 64 fine steps.
     EXPECT_GT(run(0.4, false), slept + 48 * 64);
 }
