@@ -197,6 +197,9 @@ uint32_t frame_count(const SimulateSettings& s);
 // lets the next probe cover two aligned blocks (at most kAutoMaxSpan) when its loads scaled to the
 // longer step (the stretch as h^2, everything else as h) stay under kAutoRefineLoad and every
 // awake piece moves under kAutoSpanTravel of its size (|v| / r + |w|) within it.
+// A probe undone for its stretch alone whose split would need the fine steps' count or more sends
+// the next 1, 2, 4, ... (at most kAutoMaxWait) blocks to the fine steps unprobed; a kept probe
+// starts the wait at 1 again.
 inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
 // A run at a fixed step that breaks nothing while its stiffest joint has omega h above this is
 // warned about: an impact's peak force is then resolved to about 1 / (omega h) of itself
