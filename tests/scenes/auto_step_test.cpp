@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "core/material_presets.h"
 #include "scenes/box_model.h"
@@ -26,6 +27,26 @@ TEST(AutoStep, TheFineStepIsThePowerOfTwoThatResolvesTheStiffestJointWithinMaxCf
     EXPECT_EQ(auto_split(block, 1e12, 1e12, true, 0.5), kAutoMaxSplit);
 }
 
+// The shot dropped `nudge` away from its own drop, at its fixed step and at the automatic step:
+// both break, the same joints' count, the first break within a frame.
+struct FixedAndAuto {
+    SimulationResult fixed, automatic;
+};
+FixedAndAuto run_both(const Shot& shot, const Model& model, const Vec3& nudge, const std::string& name) {
+    SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
+    fixed.object.pose.position += nudge;
+    SimulationInput automatic = fixed;
+    automatic.simulate.auto_substeps = true;
+    FixedAndAuto r{simulate(model, fixed, name), simulate(model, automatic, name)};
+    EXPECT_FALSE(r.fixed.breaks.empty());
+    EXPECT_FALSE(r.automatic.breaks.empty());
+    if (!r.fixed.breaks.empty() && !r.automatic.breaks.empty()) {
+        EXPECT_EQ(r.automatic.breaks.size(), r.fixed.breaks.size());
+        EXPECT_NEAR(r.automatic.breaks.front().time, r.fixed.breaks.front().time, 1.0 / shot.simulate.fps);
+    }
+    return r;
+}
+
 // The plaster plate dropped on the sphere: the same breaks, the first within a frame, the same
 // fragments, over the shot's 1.5 s in a twentieth of its 45,000 steps or fewer, the probes undone
 // counted (measured: 2,013 to 2,170); every break from a fine step (shorter than the probe's
@@ -38,16 +59,9 @@ TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
     const Model model = prescore_shot(shot, nullptr);
     double ke_fixed = 0, ke_auto = 0;
     for (double nudge : {0.0, 1e-7, 2e-7}) {
-        SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
-        fixed.object.pose.position.y() += nudge;
-        SimulationInput automatic = fixed;
-        automatic.simulate.auto_substeps = true;
-        const SimulationResult f = simulate(model, fixed, "plate"), a = simulate(model, automatic, "plate");
-        ASSERT_FALSE(f.breaks.empty());
-        ASSERT_FALSE(a.breaks.empty());
-        EXPECT_EQ(a.breaks.size(), f.breaks.size());
+        const auto [f, a] = run_both(shot, model, Vec3(0, nudge, 0), "plate");
+        ASSERT_FALSE(f.breaks.empty() || a.breaks.empty());
         EXPECT_EQ(fragments(model, a), fragments(model, f));
-        EXPECT_NEAR(a.breaks.front().time, f.breaks.front().time, 1.0 / shot.simulate.fps);
         ke_fixed += kinetic_at(f, f.breaks.front().time + 0.1) / 3;
         ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / 3;
         EXPECT_LE((a.steps + a.rejected_steps) * 20, f.steps)
@@ -108,15 +122,8 @@ TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
     double ke_fixed = 0, ke_auto = 0, steps_auto = 0, steps_fixed = 0;
     const int drops = 8;
     for (int i = 0; i < drops; ++i) {
-        SimulationInput fixed = input_of(shot, 1.0, shot.simulate.duration);
-        fixed.object.pose.position.x() += 1e-3 * i;
-        SimulationInput automatic = fixed;
-        automatic.simulate.auto_substeps = true;
-        const SimulationResult f = simulate(model, fixed, "bunny_sphere"), a = simulate(model, automatic, "bunny_sphere");
-        ASSERT_FALSE(f.breaks.empty());
-        ASSERT_FALSE(a.breaks.empty());
-        EXPECT_EQ(a.breaks.size(), f.breaks.size());
-        EXPECT_NEAR(a.breaks.front().time, f.breaks.front().time, 1.0 / shot.simulate.fps);
+        const auto [f, a] = run_both(shot, model, Vec3(1e-3 * i, 0, 0), "bunny_sphere");
+        ASSERT_FALSE(f.breaks.empty() || a.breaks.empty());
         ke_fixed += kinetic_at(f, f.breaks.front().time + 0.1) / drops;
         ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / drops;
         steps_fixed += double(f.steps) / drops;
