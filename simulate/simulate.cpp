@@ -343,6 +343,56 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
     return n;
 }
 
+namespace {
+
+// duration = "auto" and the pieces never came to rest: the piece that moves most for its size
+// (|v| / r + |w|), and, when the joints that hold it all lie on one line (one joint: a ball; more:
+// a hinge) to one neighbour, that: joined pieces do not collide, so such a piece can turn through
+// its neighbour with nothing to stop it (docs/physics.md section 7a).
+void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s) {
+    uint32_t worst = 0;
+    double most = -1;
+    for (uint32_t i = 0; i < world.pieces(); ++i) {
+        if (!world.piece_dynamic(i) || !(radius[i] > 0)) continue;
+        const double m = world.piece_velocity(i).norm() / radius[i] + world.piece_angular_velocity(i).norm();
+        if (m > most) most = m, worst = i;
+    }
+    if (most < 0) return;
+    std::vector<Vec3> pivots;
+    std::vector<uint32_t> neighbours;
+    for (size_t c = 0; c < world.constraint_count(); ++c) {
+        if (!world.active(c) || (world.piece_a(c) != worst && world.piece_b(c) != worst)) continue;
+        Vec3 p;
+        world.bodies_at_pivot(c, &p);
+        pivots.push_back(p);
+        neighbours.push_back(world.piece_a(c) == worst ? world.piece_b(c) : world.piece_a(c));
+    }
+    std::string held;
+    if (!pivots.empty() && std::all_of(neighbours.begin(), neighbours.end(), [&](uint32_t n) { return n == neighbours[0]; })) {
+        // On one line: every pivot within a twentieth of the piece's radius of the line through the
+        // first pivot and the one farthest from it.
+        size_t far = 0;
+        for (size_t i = 1; i < pivots.size(); ++i)
+            if ((pivots[i] - pivots[0]).norm() > (pivots[far] - pivots[0]).norm()) far = i;
+        const Vec3 d = (pivots[far] - pivots[0]).normalized();
+        bool line = true;
+        for (const Vec3& p : pivots) {
+            const Vec3 r = p - pivots[0];
+            if (far > 0 && (r - r.dot(d) * d).norm() > 0.05 * radius[worst]) line = false;
+        }
+        if (line)
+            held = fmt::format(", held to piece {} by {} on one line (a {}): joined pieces do not collide, so it can turn "
+                               "through its neighbour (docs/physics.md section 7a)",
+                               neighbours[0], pivots.size() == 1 ? "one joint" : fmt::format("{} joints", pivots.size()),
+                               pivots.size() == 1 ? "ball joint" : "hinge");
+    }
+    spdlog::warn("simulate: the pieces were still moving at max_duration = {:g} s (duration = \"auto\"): piece {} at "
+                 "{:.3g} m/s and {:.3g} rad/s{}. The movie runs to max_duration; a fixed [simulate] duration ends it sooner",
+                 s.max_duration, worst, world.piece_velocity(worst).norm(), world.piece_angular_velocity(worst).norm(), held);
+}
+
+}  // namespace
+
 double rest_speed_landed(const Model& model) {
     Eigen::AlignedBox3d box;
     for (const Piece& p : model.pieces)
@@ -664,6 +714,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     }
     t.complete = out.complete;
     out.asleep = world.sleeping_pieces();
+    if (in.simulate.auto_duration && out.complete && out.rest_time < 0) warn_still_moving(world, radius, in.simulate);
     if (world.flying())
         spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "
                      "reach ([simulate] rigid_flight)");

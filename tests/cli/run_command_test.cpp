@@ -390,5 +390,20 @@ TEST(RunCommand, AReadOnlyOutputFolderFailsClearly) {
               std::string::npos) << r.err;
 }
 
+// duration = "auto" that never comes to rest: the 10 cm cube set down on frictionless ground
+// sliding at 1 m/s keeps that speed (no friction, nothing else acting along the ground), so it
+// is still moving at max_duration, and the run says so, naming a piece at 1 m/s.
+TEST(RunCommand, APieceStillMovingAtMaxDurationIsNamed) {
+    TempDir dir;
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
+    auto r = run_shatter({"run", dir.file("cube.obj"), "-o", dir.file("out"), "--no-progress", "--stages",
+                          "prescore,simulate", "--set", "object.place=base", "--set", "object.position=[0,0,0]",
+                          "--set", "object.velocity=[1,0,0]", "--set", "material.friction=0", "--set",
+                          "scene.ground_friction=0", "--set", "simulate.max_duration=1"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("still moving at max_duration = 1 s"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" at 1 m/s"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace shatter
