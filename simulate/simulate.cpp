@@ -345,19 +345,25 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
 
 namespace {
 
-// duration = "auto" and the pieces never came to rest: the piece that moves most for its size
-// (|v| / r + |w|), and, when the joints that hold it all lie on one line (one joint: a ball; more:
-// a hinge) to one neighbour, that: joined pieces do not collide, so such a piece can turn through
-// its neighbour with nothing to stop it (docs/physics.md section 7a).
-void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s) {
-    uint32_t worst = 0;
+// The most any dynamic piece moves for its size, |v| / r + |w| (unit: 1/s), and which piece (in
+// *piece); -1 when there is none.
+double most_moving(const BulletWorld& world, const std::vector<double>& radius, uint32_t* piece) {
     double most = -1;
     for (uint32_t i = 0; i < world.pieces(); ++i) {
         if (!world.piece_dynamic(i) || !(radius[i] > 0)) continue;
         const double m = world.piece_velocity(i).norm() / radius[i] + world.piece_angular_velocity(i).norm();
-        if (m > most) most = m, worst = i;
+        if (m > most) most = m, *piece = i;
     }
-    if (most < 0) return;
+    return most;
+}
+
+// duration = "auto" and the pieces never came to rest: the piece that moves most for its size,
+// and, when the joints that hold it all lie on one line (one joint: a ball; more: a hinge) to one
+// neighbour, that: joined pieces do not collide, so such a piece can turn through its neighbour
+// with nothing to stop it (docs/physics.md section 7a).
+void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s) {
+    uint32_t worst = 0;
+    if (most_moving(world, radius, &worst) < 0) return;
     std::vector<Vec3> pivots;
     std::vector<uint32_t> neighbours;
     for (size_t c = 0; c < world.constraint_count(); ++c) {
@@ -376,9 +382,9 @@ void warn_still_moving(const BulletWorld& world, const std::vector<double>& radi
             if ((pivots[i] - pivots[0]).norm() > (pivots[far] - pivots[0]).norm()) far = i;
         const Vec3 d = (pivots[far] - pivots[0]).normalized();
         bool line = true;
-        for (const Vec3& p : pivots) {
-            const Vec3 r = p - pivots[0];
-            if (far > 0 && (r - r.dot(d) * d).norm() > 0.05 * radius[worst]) line = false;
+        for (size_t i = 1; i < pivots.size() && far > 0; ++i) {
+            const Vec3 r = pivots[i] - pivots[0];
+            if ((r - r.dot(d) * d).norm() > 0.05 * radius[worst]) line = false;
         }
         if (line)
             held = fmt::format(", held to piece {} by {} on one line (a {}): joined pieces do not collide, so it can turn "
@@ -534,6 +540,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // (rest_speed); from then on it is the object's own (rest_speed_landed): a 600 m object
     // whose last piece slides at 6 m/s moves under half a pixel a frame in a movie that frames it.
     // The hold then begins no earlier than the frame it landed in: the fall before it does not count.
+    // (substeps = "auto" spans blocks only from then on too.)
     double rest = rest_speed(model, in.scene.gravity.norm());
     bool landed = false;
     uint32_t hold_from = 0, frame = 0;
@@ -580,11 +587,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     Progress progress("simulate", frames - 1);
     bool fine = false;     // substeps = "auto": the next block runs in fine steps
     uint32_t coarse = 1;   // and otherwise in this many steps
-    bool touched = false;  // the object has touched the scene, or broken
     auto after_step = [&] {
         guard.after_step(world);
-        if (!touched && in.simulate.auto_substeps) touched = !out.breaks.empty() || world.touches_scene();
-        if (!landed && in.simulate.auto_duration && (!out.breaks.empty() || world.touches_scene())) {
+        if (!landed && (in.simulate.auto_duration || in.simulate.auto_substeps) &&
+            (!out.breaks.empty() || world.touches_scene())) {
             landed = true;
             rest = rest_speed_landed(model);
             hold_from = frame;
@@ -598,11 +604,8 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     uint32_t span = 1;
     uint32_t waits = 0, backoff = 1;  // blocks to run fine unprobed, and the next such wait
     auto calm_span = [&](uint32_t now) {
-        double travel = 0;  // the largest travel per second over size
-        for (uint32_t i = 0; i < world.pieces(); ++i)
-            if (world.piece_dynamic(i) && radius[i] > 0)
-                travel = std::max(travel, world.piece_velocity(i).norm() / radius[i] +
-                                              world.piece_angular_velocity(i).norm());
+        uint32_t fastest = 0;
+        const double travel = std::max(0.0, most_moving(world, radius, &fastest));  // per second, over size
         uint32_t next = std::min(2 * now, kAutoMaxSpan);
         while (next > 1) {
             const double r = double(next) / now;
@@ -634,7 +637,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                 // Calm, once the object has touched the scene: one probe over `span` blocks,
                 // aligned within the frame (before, the fall keeps the blocks' step, so that an
                 // impact comes when a fixed step of a block's length has it).
-                uint32_t over = fine || wait || coarse > 1 || !touched ? 1 : span;
+                uint32_t over = fine || wait || coarse > 1 || !landed ? 1 : span;
                 while (over > 1 && (b % over != 0 || b + over > blocks)) over /= 2;
                 if (over > 1) {
                     if (run.probe(out, block * over)) {
