@@ -913,11 +913,13 @@ void BulletWorld::remove_constraint(size_t c) {
     m.world.removeConstraint(j.constraint.get());
     j.active = false;
     // Joined pieces never collide, so a pair whose last joint breaks may overlap by then: partly
-    // broken, its remaining joints a hinge, it can turn into itself (measured: two of the plate's
-    // cubes 18 mm into each other). Their new contact would push that overlap out while the pieces
-    // are still joined to others: each step's split-impulse push stretches a stiff joint, whose
-    // ERP turns it into speed (4 J in one step: the plate's runaways). Such a pair ignores itself,
-    // like a pair that starts overlapping, until it has parted (release_parted_pairs).
+    // broken, its remaining joints a hinge, it can turn into itself (up to simulate.h
+    // kOverlapBreak of the smaller piece's radius, where the joints left break; before that rule,
+    // two of the plate's cubes 18 mm into each other). Their new contact would push that overlap
+    // out while the pieces are still joined to others: each step's split-impulse push stretches a
+    // stiff joint, whose ERP turns it into speed (4 J in one step: the plate's runaways). Such a
+    // pair ignores itself, like a pair that starts overlapping, until it has parted
+    // (release_parted_pairs).
     btRigidBody* a = m.pieces[j.piece_a].body;
     btRigidBody* b = m.pieces[j.piece_b].body;
     if (!a->checkCollideWith(b)) return;  // still joined by another constraint

@@ -37,6 +37,7 @@ std::string break_log_jsonl(const std::vector<BreakRecord>& breaks) {
                                     {"momentum_work_J", b.momentum_work}};
         if (b.held_energy > 0) j["held_energy_J"] = b.held_energy;
         if (b.released_energy > 0) j["released_energy_J"] = b.released_energy;
+        if (b.overlap > 0) j["overlap_m"] = b.overlap;
         out += j.dump() + "\n";
     }
     return out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -79,8 +80,19 @@ void check_cfm(const BulletWorld& world, const Model& model, const SimulationInp
 
 class Run {
 public:
-    Run(const SimulationInput& in, BulletWorld& world)
-        : in_(in), world_(world), policy_(in.simulate.rate_limit), energize_(energize_settings(in)) {}
+    // `radius`: each piece's (piece_radius; 0 for a prop).
+    Run(const SimulationInput& in, BulletWorld& world, const std::vector<double>& radius)
+        : in_(in), world_(world), radius_(radius), policy_(in.simulate.rate_limit), energize_(energize_settings(in)) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> id;
+        pair_of_.resize(world_.constraint_count());
+        for (size_t c = 0; c < pair_of_.size(); ++c) {
+            const uint32_t a = world_.piece_a(c), b = world_.piece_b(c);
+            const auto [at, added] = id.emplace(std::make_pair(std::min(a, b), std::max(a, b)), uint32_t(pair_joints_.size()));
+            if (added) pair_joints_.emplace_back();
+            pair_joints_[at->second].push_back(c);
+            pair_of_[c] = at->second;
+        }
+    }
 
     void substep(SimulationResult& out) {
         std::shared_ptr<BulletWorld::Snapshot> start;
@@ -127,7 +139,8 @@ public:
         const double r = world_.max_joint_residual(&worst);
         frame_residual_ = std::max(frame_residual_, r);
         if (r > out.residual.residual) out.residual = {r, world_.time(), worst};
-        const std::vector<Overload> over = find_overloads(world_, in_.simulate.break_criterion);
+        std::vector<Overload> over = find_overloads(world_, in_.simulate.break_criterion);
+        add_overlapped(over);
         const std::vector<size_t> broken = policy_.select(over, world_.time());
         if (broken.empty() && out.breaks.empty() && r > out.residual_before_break.residual)
             out.residual_before_break = {r, world_.time(), worst};
@@ -158,8 +171,18 @@ public:
                 frames.push_back(pair_frame_velocity(now[0], now[1]));
             }
         }
-        for (size_t i = 0; i < broken.size(); ++i)
+        for (size_t i = 0; i < broken.size(); ++i) {
             energize_break(broken[i], loads[i], frames[i], joined[i] ? &*joined[i] : nullptr, out);
+            if (broken[i] < overlap_.size()) out.breaks.back().overlap = overlap_[broken[i]];
+        }
+        // The pairs this step's breaks leave partly joined (ascending, for the overlap check).
+        for (size_t c : broken) {
+            const uint32_t p = pair_of_[c];
+            const std::vector<size_t>& joints = pair_joints_[p];
+            const bool held = std::any_of(joints.begin(), joints.end(), [&](size_t j) { return world_.active(j); });
+            const auto at = std::lower_bound(partly_joined_.begin(), partly_joined_.end(), p);
+            if (held && (at == partly_joined_.end() || *at != p)) partly_joined_.insert(at, p);
+        }
     }
 
     double injected() const { return injected_; }  // (unit: J)
@@ -239,6 +262,51 @@ public:
     }
 
 private:
+    // kOverlapBreak: adds to `over` (ascending by constraint) the joints still holding a partly
+    // joined pair one of whose broken joints' pivots, each carried by its piece, have passed into
+    // each other along the line between the pieces' centres by more than kOverlapBreak of the
+    // smaller piece's radius (their depth into overlap_). The stretch d = (pivot on B) - (pivot
+    // on A) of a broken joint is how its pivots have parted; -d . (centre of B - centre of A),
+    // over that line's length, how far B's pivot went into A.
+    void add_overlapped(std::vector<Overload>& over) {
+        for (size_t c : overlapped_) overlap_[c] = 0;
+        overlapped_.clear();
+        if (partly_joined_.empty()) return;
+        overlap_.resize(world_.constraint_count(), 0.0);
+        size_t kept = 0;
+        bool added = false;
+        for (const uint32_t p : partly_joined_) {
+            const std::vector<size_t>& joints = pair_joints_[p];
+            double deepest = 0;
+            bool held = false;
+            for (size_t c : joints) {
+                if (world_.active(c)) {
+                    held = true;
+                    continue;
+                }
+                const Vec3 line = world_.piece_position(world_.piece_b(c)) - world_.piece_position(world_.piece_a(c));
+                if (!(line.norm() > 0)) continue;
+                deepest = std::max(deepest, -world_.joint_stretch(c).stretch.dot(line) / line.norm());
+            }
+            if (!held) continue;  // its last joints broke: no longer partly joined
+            partly_joined_[kept++] = p;
+            const uint32_t a = world_.piece_a(joints[0]), b = world_.piece_b(joints[0]);
+            if (!(deepest > kOverlapBreak * std::min(radius_[a], radius_[b]))) continue;
+            for (size_t c : joints) {
+                if (!world_.active(c)) continue;
+                overlap_[c] = deepest;
+                overlapped_.push_back(c);
+                if (std::any_of(over.begin(), over.end(), [c](const Overload& o) { return o.constraint == c; })) continue;
+                const double s = world_.strength(c);
+                over.push_back({c, s > 0 ? world_.force_on_a(c).norm() / s : INFINITY});
+                added = true;
+            }
+        }
+        partly_joined_.resize(kept);
+        if (added)
+            std::sort(over.begin(), over.end(), [](const Overload& x, const Overload& y) { return x.constraint < y.constraint; });
+    }
+
     void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame,
                         const BulletWorld::JoinedPieces* joined, SimulationResult& out) {
         const auto start = std::chrono::steady_clock::now();
@@ -272,6 +340,14 @@ private:
 
     const SimulationInput& in_;
     BulletWorld& world_;
+    const std::vector<double>& radius_;
+    // The pairs of pieces the joints join: each joint's pair, each pair's joints (ascending), and
+    // the pairs that some of their joints still hold after others broke (ascending).
+    std::vector<uint32_t> pair_of_;
+    std::vector<std::vector<size_t>> pair_joints_;
+    std::vector<uint32_t> partly_joined_;
+    std::vector<double> overlap_;  // per joint: the depth that breaks it this step (kOverlapBreak; unit: m)
+    std::vector<size_t> overlapped_;  // the joints overlap_ holds a depth for
     BreakPolicy policy_;
     EnergizeSettings energize_;
     double injected_ = 0, removed_ = 0;
@@ -359,8 +435,8 @@ double most_moving(const BulletWorld& world, const std::vector<double>& radius, 
 
 // duration = "auto" and the pieces never came to rest: the piece that moves most for its size,
 // and, when the joints that hold it all lie on one line (one joint: a ball; more: a hinge) to one
-// neighbour, that: joined pieces do not collide, so such a piece can turn through its neighbour
-// with nothing to stop it (docs/physics.md section 7a).
+// neighbour, that: such a piece swings about them, with nothing but the joints' damping to stop it
+// while it does not turn into its neighbour (kOverlapBreak; docs/physics.md section 3).
 void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s) {
     uint32_t worst = 0;
     if (most_moving(world, radius, &worst) < 0) return;
@@ -387,8 +463,8 @@ void warn_still_moving(const BulletWorld& world, const std::vector<double>& radi
             if ((r - r.dot(d) * d).norm() > 0.05 * radius[worst]) line = false;
         }
         if (line)
-            held = fmt::format(", held to piece {} by {} on one line (a {}): joined pieces do not collide, so it can turn "
-                               "through its neighbour (docs/physics.md section 7a)",
+            held = fmt::format(", held to piece {} by {} on one line (a {}), about which it swings (docs/physics.md "
+                               "section 3)",
                                neighbours[0], pivots.size() == 1 ? "one joint" : fmt::format("{} joints", pivots.size()),
                                pivots.size() == 1 ? "ball joint" : "hinge");
     }
@@ -522,7 +598,9 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     t.fps = in.simulate.fps;
     t.pieces = world.pieces();
     t.props = world.props();
-    Run run(in, world);
+    std::vector<double> radius(world.pieces(), 0.0);
+    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
+    Run run(in, world, radius);
     InstabilityGuard guard(world, model, in.scene, in.object, in.material);
     record(world, t);
     out.energy.push_back(run.books());
@@ -534,8 +612,6 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // the frame's last step, and the turn over the hold, not between two frames: a piece resting
     // on others trembles in place (measured on the demo: a piece turning back and forth at 0.2
     // rad/s for 2 s, 0.14 degrees in all).
-    std::vector<double> radius(world.pieces(), 0.0);
-    for (uint32_t i = 0; i < world.pieces() && i < model.pieces.size(); ++i) radius[i] = piece_radius(model.pieces[i]);
     // Until the object first touches the scene (or breaks), the rest speed is capped by the fall
     // (rest_speed); from then on it is the object's own (rest_speed_landed): a 600 m object
     // whose last piece slides at 6 m/s moves under half a pixel a frame in a movie that frames it.

@@ -343,5 +343,83 @@ TEST(Fracture, APairOverlappingWhenItsLastJointBreaksIgnoresItselfInsteadOfExplo
     EXPECT_LT(kinetic_after_breaking_an_overlapping_pair(0.0), 1e-6);
 }
 
+// A 1 kg cube b hangs beside a fixed cube a, joined at the four corners of their shared face
+// (x = 0): two stiff strong joints along one edge, two weak ones along the other, which b's
+// weight breaks at once. `weak_top`: the weak ones are the top edge's, and b turns about the
+// bottom edge, away from a (a crack that opens: the beam's hinge); else about the top edge, its
+// bottom corners into a. Simulated for `seconds` at h = 1/960 s with direct joints.
+SimulationResult hinged_cube(bool weak_top, double seconds) {
+    BoxModelBuilder b;
+    const uint32_t fixed = b.box(Vec3(-kSide / 2, 1, 0), Vec3::Constant(kSide));
+    const uint32_t hanging = b.box(Vec3(kSide / 2, 1, 0), Vec3::Constant(kSide));
+    for (double y : {1 - kSide / 2, 1 + kSide / 2})
+        for (double z : {-kSide / 2, kSide / 2})
+            b.join(fixed, hanging, Vec3(0, y, z), (y > 1) == weak_top ? 2.5e-5 : 2.5e-3);
+    SimulationInput in;
+    in.scene.ground = false;
+    in.object.driven.push_back({fixed, true, Vec3::Zero(), {}});
+    in.material.stiffness = 1e10;  // 2.5e7 N/m strong, 2.5e5 N/m weak
+    in.material.strength = 2e4;    // 50 N strong, 0.5 N weak: b's weight loads each about 3.5 N
+    in.simulate.joints = JointSolve::Direct;
+    in.simulate.fps = 60;
+    in.simulate.substeps = 16;
+    in.simulate.duration = seconds;
+    return simulate(b.take(), in, "test");
+}
+
+// Hinged about the top edge, b's bottom corners turn into a (joined pieces do not collide). The
+// hinge breaks when the broken joints' pivots have passed into each other by kOverlapBreak of the
+// cube's radius (sqrt(3) x 5 cm), at the time the pendulum's equation gives: I theta'' = m g x,
+// I = m (s^2 / 6 + s^2 / 2) about the edge, x = (s / 2)(cos theta - sin theta) the centre's lever.
+TEST(Fracture, AHingeTurningAPieceIntoItsNeighbourBreaksWhereThePendulumPredicts) {
+    const SimulationResult r = hinged_cube(false, 0.2);
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    ASSERT_EQ(r.breaks.size(), 4u);
+    const double radius = std::sqrt(3.0) * kSide / 2, limit = kOverlapBreak * radius;
+    // How far the bottom pivots have passed into each other along the centres' line at theta
+    // (about the hinge: b's bottom-left corner (0, -s) turned, a's staying; centres (s/2, -s/2)
+    // turned and (-s/2, -s/2)).
+    const auto depth = [](double t) {
+        const double s = kSide, c = std::cos(t), n = std::sin(t);
+        const Vec3 d(-s * n, s - s * c, 0);
+        const Vec3 line(s / 2 * (c - n) + s / 2, -s / 2 * (n + c) + s / 2, 0);
+        return -d.dot(line) / line.norm();
+    };
+    double theta = 0, omega = 0, t = 0;
+    const double dt = 1e-6, inertia = kSide * kSide * (1.0 / 6 + 0.5);
+    while (depth(theta) < limit) {
+        omega += dt * 9.81 * kSide / 2 * (std::cos(theta) - std::sin(theta)) / inertia;
+        theta += dt * omega;
+        t += dt;
+    }
+    const double start = std::max(r.breaks[0].time, r.breaks[1].time);  // the weak joints
+    EXPECT_EQ(r.breaks[0].overlap, 0.0);
+    EXPECT_EQ(r.breaks[1].overlap, 0.0);
+    EXPECT_LT(start, 0.01);
+    for (int i = 2; i < 4; ++i) {
+        const BreakRecord& hinge = r.breaks[size_t(i)];
+        EXPECT_LT(hinge.force.norm(), hinge.strength);  // not by its load
+        EXPECT_GT(hinge.overlap, limit);
+        EXPECT_LT(hinge.overlap, limit + 1e-3);  // within a step's turn (b's bottom at 0.4 m/s: 0.4 mm)
+        EXPECT_NEAR(hinge.time - start, t, 0.05 * t + 2.0 / 960) << "predicted " << t << " s after the weak joints";
+    }
+    // Through the usual break and its books: every break gives back alpha E, the first of the
+    // two hinge joints' held until the second parts the pair.
+    double given = 0, injected = 0;
+    for (const BreakRecord& b : r.breaks) given += given_back(b), injected += b.injected_energy;
+    EXPECT_GT(given, 0);
+    EXPECT_NEAR(injected, given, 0.01 * given);
+}
+
+// Hinged about the bottom edge, b turns away from a (the crack opens): the hinge holds.
+TEST(Fracture, AHingeThatOpensTheCrackHolds) {
+    const SimulationResult r = hinged_cube(true, 0.15);
+    ASSERT_TRUE(r.complete) << r.stop_reason;
+    ASSERT_EQ(r.breaks.size(), 2u);  // the weak top joints only
+    const Trajectory& t = r.trajectory;
+    // b has turned (its centre dropped) about the edge that still holds it.
+    EXPECT_LT(t.pose(t.frames() - 1, 1).position.y(), 1 - 0.01);
+}
+
 }  // namespace
 }  // namespace shatter
