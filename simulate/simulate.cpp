@@ -265,45 +265,49 @@ private:
     // kOverlapBreak: adds to `over` (ascending by constraint) the joints still holding a partly
     // joined pair one of whose broken joints' pivots, each carried by its piece, have passed into
     // each other along the line between the pieces' centres by more than kOverlapBreak of the
-    // smaller piece's radius (their depth into overlap_). The stretch d = (pivot on B) - (pivot
-    // on A) of a broken joint is how its pivots have parted; -d . (centre of B - centre of A),
-    // over that line's length, how far B's pivot went into A.
+    // smaller piece's radius beyond what the joints left are pressed together along it (that
+    // excess into overlap_). The stretch d = (pivot on B) - (pivot on A) of a joint is how its
+    // pivots have parted; -d . (centre of B - centre of A), over that line's length, how far B's
+    // pivot went into A. A pair pressed together as a whole (its joints left squeezed as much as
+    // the broken ones) is the joints' business, not this rule's: only a turn that the joints left
+    // let through counts.
     void add_overlapped(std::vector<Overload>& over) {
         for (size_t c : overlapped_) overlap_[c] = 0;
         overlapped_.clear();
         if (partly_joined_.empty()) return;
         overlap_.resize(world_.constraint_count(), 0.0);
+        const size_t loaded = over.size();  // ascending: searched as added ones go to the end
         size_t kept = 0;
-        bool added = false;
         for (const uint32_t p : partly_joined_) {
             const std::vector<size_t>& joints = pair_joints_[p];
-            double deepest = 0;
+            double deepest = 0, pressed = 0;
             bool held = false;
             for (size_t c : joints) {
-                if (world_.active(c)) {
-                    held = true;
-                    continue;
-                }
                 const Vec3 line = world_.piece_position(world_.piece_b(c)) - world_.piece_position(world_.piece_a(c));
                 if (!(line.norm() > 0)) continue;
-                deepest = std::max(deepest, -world_.joint_stretch(c).stretch.dot(line) / line.norm());
+                const double depth = -world_.joint_stretch(c).stretch.dot(line) / line.norm();
+                if (world_.active(c)) held = true, pressed = std::max(pressed, depth);
+                else deepest = std::max(deepest, depth);
             }
             if (!held) continue;  // its last joints broke: no longer partly joined
             partly_joined_[kept++] = p;
             const uint32_t a = world_.piece_a(joints[0]), b = world_.piece_b(joints[0]);
-            if (!(deepest > kOverlapBreak * std::min(radius_[a], radius_[b]))) continue;
+            const double excess = deepest - pressed;
+            if (!(excess > kOverlapBreak * std::min(radius_[a], radius_[b]))) continue;
             for (size_t c : joints) {
                 if (!world_.active(c)) continue;
-                overlap_[c] = deepest;
+                const auto loaded_end = over.begin() + std::ptrdiff_t(loaded);
+                const auto at = std::lower_bound(over.begin(), loaded_end, c,
+                                                 [](const Overload& o, size_t x) { return o.constraint < x; });
+                if (at != loaded_end && at->constraint == c) continue;  // breaks by its load anyway
+                overlap_[c] = excess;
                 overlapped_.push_back(c);
-                if (std::any_of(over.begin(), over.end(), [c](const Overload& o) { return o.constraint == c; })) continue;
                 const double s = world_.strength(c);
                 over.push_back({c, s > 0 ? world_.force_on_a(c).norm() / s : INFINITY});
-                added = true;
             }
         }
         partly_joined_.resize(kept);
-        if (added)
+        if (over.size() > loaded)
             std::sort(over.begin(), over.end(), [](const Overload& x, const Overload& y) { return x.constraint < y.constraint; });
     }
 

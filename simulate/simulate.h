@@ -52,7 +52,8 @@ struct BreakRecord {
     double held_energy = 0;
     double released_energy = 0;
     // Broken because its two pieces had turned into each other (kOverlapBreak): how deep the
-    // deepest of the pair's broken joints had passed (unit: m); 0 for a break by its load.
+    // deepest of the pair's broken joints had passed beyond the joints left (unit: m); 0 for a
+    // break by its load.
     double overlap = 0;
 };
 
@@ -61,8 +62,9 @@ struct BreakRecord {
 // material with nothing but the joints' damping to stop it, where real pieces would meet and lever
 // those joints off. So when the two pivots of one of a pair's broken joints, each carried by its
 // piece, have passed into each other along the line between the pieces' centres by more than
-// kOverlapBreak of the smaller piece's radius, the pair's joints still holding break, through the
-// usual break and its books (BreakRecord::overlap; docs/physics.md section 3).
+// kOverlapBreak of the smaller piece's radius beyond what the joints left are pressed together
+// along it, the pair's joints still holding break, through the usual break and its books
+// (BreakRecord::overlap; docs/physics.md section 3).
 inline constexpr double kOverlapBreak = 0.1;  // of the smaller piece's radius (unit: 1)
 
 // What a break gives back: alpha E, plus the held energy it releases, less what it holds (unit: J).

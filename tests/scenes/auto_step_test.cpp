@@ -49,10 +49,10 @@ FixedAndAuto run_both(const Shot& shot, const Model& model, const Vec3& nudge, c
 
 // The plaster plate dropped on the sphere: the same breaks, the first within a frame, the same
 // fragments, over the shot's 1.5 s in a twentieth of its 45,000 steps or fewer, the probes undone
-// counted (measured: 2,013 to 2,170); every break from a fine step (shorter than the probe's
+// counted (measured: 1,261 to 1,393); every break from a fine step (shorter than the probe's
 // block). The cubes' kinetic energy 0.1 s after the first break is chaotic: the drop 0.1 um higher
-// or lower moves it by up to 30% at either step (the three drops here: 0.57, 0.74 and 0.66 J
-// automatic, 0.61, 0.52 and 0.64 J fixed). So the means over three such drops are compared,
+// or lower moves it by up to 30% at either step (the three drops here: 0.52, 0.66 and 0.62 J
+// automatic, 0.57, 0.57 and 0.55 J fixed). So the means over three such drops are compared,
 // within 20%.
 TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
     const Shot shot = asset("plate");
@@ -113,7 +113,7 @@ TEST(AutoStep, ATurningPairRunsInTheStepsItsJointsStretchAllows) {
 // (1/480 s), so the automatic step saves only where a step spans two blocks: after the impact,
 // once the fragments' loads and motion are calm (each moving under a tenth of its size in the
 // step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
-// 960, undone probes counted (measured: 948 on average, 825 to 1,145), the same first break and
+// 960, undone probes counted (measured: 921 on average, 825 to 1,013), the same first break and
 // breaks, and the mean kinetic energy 0.1 s after the break within the study's 10% (measured 1.48
 // against 1.36 J).
 TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
