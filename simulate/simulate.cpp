@@ -320,9 +320,12 @@ private:
         if (joined && joined->parted) {
             std::vector<int8_t> side(world_.pieces(), -1);
             for (size_t i = 0; i < joined->pieces.size(); ++i) side[joined->pieces[i]] = int8_t(i >= joined->side_b);
+            // Parted: one on each side; or one on either side and the other not joined to it any
+            // more (the two sides are everything joined to the break's pieces), which the step's
+            // breaks did together, none of them with the two on its two sides.
             for (size_t h = 0; h < held_.size(); ++h) {
                 const int8_t a = side[held_[h].piece_a], b = side[held_[h].piece_b];
-                if (a >= 0 && b >= 0 && a != b) parted[h] = true, release += held_[h].energy;
+                if ((a >= 0) != (b >= 0) || (a >= 0 && a != b)) parted[h] = true, release += held_[h].energy;
             }
         }
         BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame, joined, release);
