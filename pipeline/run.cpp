@@ -529,11 +529,14 @@ std::string format_run_summary(const RunResult& r) {
         // The energy books: what the breaks stored, alpha times it, and what the kicks gave back.
         const double stored = sim["stored_energy_J"].get<double>(), alpha = r.summary["alpha"].get<double>();
         const double injected = sim["injected_energy_J"].get<double>();
+        // (The held energy is a sum of what breaks held less what later ones gave back: round-off
+        // when every crack opened.)
         const double held = sim.value("held_energy_J", 0.0);
+        const bool holds = held > 1e-9 * alpha * stored;
         if (sim["breaks"].get<size_t>() > 0)
             out += fmt::format("books:    stored {:.4g} J x alpha {:g} = {:.4g} J; injected {:.4g} J{}{}\n", stored, alpha,
                                alpha * stored, injected,
-                               held > 0 ? fmt::format(" + {:.4g} J held in cracks that did not open", held) : std::string(),
+                               holds ? fmt::format(" + {:.4g} J held in cracks that did not open", held) : std::string(),
                                alpha * stored > 0
                                    ? fmt::format(" ({:.3f} x alpha x stored)", (injected + held) / (alpha * stored))
                                    : std::string());
