@@ -223,7 +223,7 @@ def write_run_table(results, path, workdir):
         % sum(any('joints = "direct"' in a for a in r.get("auto", [])) for r in ok),
         "| (injected + held) / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
         "| runs ending with energy held in cracks not yet opened | %d (%.0f%% of alpha x stored at most) |"
-        % (sum(r.get("held", 0) > 0 for r in ok),
+        % (sum(r.get("held", 0) > 1e-9 * r["alpha"] * r["stored"] for r in ok),  # above round-off
            100 * max((r.get("held", 0) / (r["alpha"] * r["stored"]) for r in ok if r["alpha"] > 0 and r["stored"] > 0),
                      default=0)),
         "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
