@@ -175,13 +175,12 @@ public:
             energize_break(broken[i], loads[i], frames[i], joined[i] ? &*joined[i] : nullptr, out);
             if (broken[i] < overlap_.size()) out.breaks.back().overlap = overlap_[broken[i]];
         }
-        // The pairs this step's breaks leave partly joined (ascending, for the overlap check).
+        // The pairs this step's breaks touched, for the overlap check (ascending), which drops those
+        // no joint holds any more.
         for (size_t c : broken) {
             const uint32_t p = pair_of_[c];
-            const std::vector<size_t>& joints = pair_joints_[p];
-            const bool held = std::any_of(joints.begin(), joints.end(), [&](size_t j) { return world_.active(j); });
             const auto at = std::lower_bound(partly_joined_.begin(), partly_joined_.end(), p);
-            if (held && (at == partly_joined_.end() || *at != p)) partly_joined_.insert(at, p);
+            if (at == partly_joined_.end() || *at != p) partly_joined_.insert(at, p);
         }
     }
 
