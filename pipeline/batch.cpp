@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <deque>
 #include <filesystem>
 #include <memory>
@@ -145,6 +148,10 @@ std::string frame_at(const BatchRunResult& run, double when) {
 BatchResult run_batch(const BatchFile& batch, const BatchOptions& options) {
     const std::string exe = options.shatter.empty() ? own_executable() : options.shatter;
     const uint32_t workers = options.workers ? options.workers : batch.workers;
+    // The runs share the cores: each simulates on its share of them (simulate/workers.h; the
+    // result does not depend on it), unless the user's environment says otherwise.
+    if (workers > 1 && !std::getenv("SHATTER_THREADS"))
+        setenv("SHATTER_THREADS", std::to_string(std::max(1u, std::thread::hardware_concurrency() / workers)).c_str(), 0);
     BatchResult result;
     for (const BatchJob& job : batch.jobs)
         for (const BatchRun& run : job.runs)

@@ -1,6 +1,7 @@
 #include "simulate/bullet_collision.h"
 
 #include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
 #include <typeinfo>
@@ -109,7 +110,34 @@ void exact_aabb_near_callback(btBroadphasePair& pair, btCollisionDispatcher& dis
         static_cast<const PieceConvexAlgorithm*>(pair.m_algorithm)->apart(*a, *b, pieces.turned.data()))
         return;
     if (pieces.linked.contains(a->m_uniqueId, b->m_uniqueId)) return;
+    if (pieces.deferring && pair.m_algorithm && info.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE &&
+        ((typeid(*pair.m_algorithm) == typeid(PieceConvexAlgorithm) &&
+          static_cast<PieceConvexAlgorithm*>(pair.m_algorithm)->independent()) ||
+         typeid(*pair.m_algorithm) == typeid(btConvexPlaneCollisionAlgorithm))) {
+        const auto* object_a = static_cast<const btCollisionObject*>(a->m_clientObject);
+        const auto* object_b = static_cast<const btCollisionObject*>(b->m_clientObject);
+        if (pieces.needsCollision(object_a, object_b)) pieces.deferred.push_back({pair.m_algorithm, object_a, object_b});
+        return;
+    }
     btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+}
+
+void PieceDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info,
+                                                btDispatcher* dispatcher) {
+    deferring = workers && workers->threads() > 1;
+    deferred.clear();
+    btCollisionDispatcher::dispatchAllCollisionPairs(pairs, info, dispatcher);
+    deferring = false;
+    if (deferred.empty()) return;
+    parallel_tests += deferred.size();
+    // (btCollisionDispatcher::defaultNearCallback's test, for one deferred pair.)
+    workers->run(deferred.size(), 16, [this, &info](size_t i) {
+        const Deferred& d = deferred[i];
+        const btCollisionObjectWrapper a(nullptr, d.a->getCollisionShape(), d.a, d.a->getWorldTransform(), -1, -1);
+        const btCollisionObjectWrapper b(nullptr, d.b->getCollisionShape(), d.b, d.b->getWorldTransform(), -1, -1);
+        btManifoldResult result(&a, &b);
+        d.algorithm->processCollision(&a, &b, info, &result);
+    });
 }
 
 void PieceWorld::addConstraint(btTypedConstraint* c, bool disable_collisions_between_linked_bodies) {

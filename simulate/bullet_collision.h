@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "simulate/workers.h"
+
 namespace shatter {
 
 // Convex-convex contact between two pieces' hulls (btConvexHullShape), as
@@ -38,6 +40,9 @@ public:
                           const btDispatcherInfo& info, btManifoldResult* out) override;
     // The pair of these proxies (in this order) is proven apart by the bound: processCollision
     // would do nothing.
+    // processCollision touches only this pair's own state and manifold (made by an earlier call):
+    // it may run beside other pairs' (PieceDispatcher::workers).
+    bool independent() { return own_ && getManifold() != nullptr; }
     bool apart(const btBroadphaseProxy& a, const btBroadphaseProxy& b, const btScalar* turned) const {
         if (!has_gap_ || a.m_uniqueId != id_a_ || b.m_uniqueId != id_b_) return false;
         const btVector3& ca = static_cast<const btCollisionObject*>(a.m_clientObject)->getWorldTransform().getOrigin();
@@ -163,6 +168,24 @@ public:
 
     // btCollisionDispatcher::needsCollision, with the linked pairs (the only bodies
     // checkCollideWith refuses: nothing else marks bodies to ignore) from `linked`.
+    // The narrow phase of the pairs whose algorithm holds its own manifold already (pieces'
+    // hulls after their first contact test, pieces on the ground) runs on `workers`' threads after
+    // the walk over the pairs; the walk itself, which makes and frees algorithms and manifolds in
+    // the pairs' order (the solver's order), stays on the calling thread. Each such pair's test
+    // reads the bodies' poses and writes its own algorithm and manifold only: the same contacts
+    // for any number of threads.
+    Workers* workers = nullptr;
+    struct Deferred {
+        btCollisionAlgorithm* algorithm;
+        const btCollisionObject* a;
+        const btCollisionObject* b;
+    };
+    std::vector<Deferred> deferred;  // filled by exact_aabb_near_callback during the walk
+    bool deferring = false;
+    uint64_t parallel_tests = 0;  // deferred pairs tested so far
+    void dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info,
+                                   btDispatcher* dispatcher) override;
+
     bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
         if (a->getUserIndex() >= 0 && b->getUserIndex() >= 0 && ignored.contains(a->getUserIndex(), b->getUserIndex()))
             return false;

@@ -58,6 +58,7 @@ struct BulletWorld::Impl {
     bt32BitAxisSweep3 broadphase;
     PieceSolver solver;
     PieceWorld world{&dispatcher, &broadphase, &solver, &config};
+    std::unique_ptr<Workers> workers;
 
     struct PieceBody {
         btRigidBody* body = nullptr;
@@ -165,6 +166,8 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
       setup_(setup) {
     Impl& m = *impl_;
     m.dispatcher.setNearCallback(exact_aabb_near_callback);
+    m.workers = std::make_unique<Workers>(setup.threads ? setup.threads : default_threads());
+    m.dispatcher.workers = m.workers.get();
     // Only active bodies' boxes follow them (every body is kept active but in rigid flight).
     m.world.setForceUpdateAllAabbs(false);
     m.gravity = setup.scene.gravity;
@@ -291,6 +294,8 @@ uint32_t BulletWorld::sleeping_pieces() const {
     for (const Impl::PieceBody& p : impl_->pieces) n += Impl::asleep(*p.body);
     return n;
 }
+
+uint64_t BulletWorld::parallel_contact_tests() const { return impl_->dispatcher.parallel_tests; }
 
 bool BulletWorld::flying() const { return impl_->flying; }
 double BulletWorld::flight_end() const { return impl_->flying ? time_ : impl_->flight_end; }

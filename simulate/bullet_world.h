@@ -66,6 +66,9 @@ struct WorldSetup {
     // Sleeping (above): a body sleeps below this speed of its centre, and this speed over its
     // radius of turn (its piece's radius; a projectile's shape's). 0: nothing sleeps (unit: m/s).
     double sleep_speed = 0;
+    // Threads for the contact tests of pairs already in contact or near it (PieceDispatcher::
+    // workers); 0: default_threads() (simulate/workers.h). The result is the same for any number.
+    unsigned threads = 0;
 };
 
 // How long every body of an island must stay below its sleeping thresholds before the island
@@ -117,6 +120,9 @@ public:
     // many dynamic pieces sleep.
     bool awake(size_t c) const;
     uint32_t sleeping_pieces() const;
+    // Contact tests run so far on the worker threads beside the step (WorldSetup::threads); 0
+    // with one thread.
+    uint64_t parallel_contact_tests() const;
     // The load an impact that has begun would bring on the joints: contacts are found for the
     // bodies as they are now (Bullet finds them at the start of a step), and every penetrating
     // contact point of a piece with active joints awake whose bodies approach at v along the normal

@@ -591,6 +591,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     setup.direct_joints = direct;
     setup.rigid_flight = in.simulate.rigid_flight;
     if (in.simulate.sleep) setup.sleep_speed = kSleepSpeed;
+    setup.threads = in.threads;
     BulletWorld world(model, setup);
     if (!direct) check_cfm(world, model, in);
 
@@ -799,6 +800,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     }
     t.complete = out.complete;
     out.asleep = world.sleeping_pieces();
+    out.parallel_contact_tests = world.parallel_contact_tests();
     if (in.simulate.auto_duration && out.complete && out.rest_time < 0) warn_still_moving(world, radius, in.simulate);
     if (world.flying())
         spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "

@@ -26,6 +26,9 @@ struct SimulationInput {
     ObjectSettings object;
     MaterialSettings material;
     SimulateSettings simulate;
+    // Threads the step runs on (WorldSetup::threads; 0: default_threads(), simulate/workers.h):
+    // never changes the result.
+    unsigned threads = 0;
 };
 
 struct BreakRecord {
@@ -125,6 +128,7 @@ struct SimulationResult {
     // negative when the simulation reached max_duration first, or without "auto" (unit: s).
     double rest_time = -1;
     double energize_seconds = 0;  // wall time spent energizing breaks (for the benchmark)
+    uint64_t parallel_contact_tests = 0;  // BulletWorld::parallel_contact_tests at the end
     ResidualPeak residual;        // over every step (before each step's breaks)
     ResidualPeak residual_before_break;  // over the steps before the first break's
     bool complete = true;

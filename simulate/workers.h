@@ -1,0 +1,46 @@
+// A fixed set of worker threads that run a loop's items together with the calling thread. The
+// items must be independent of each other: which thread runs an item never changes what it
+// computes, so a run's bytes do not depend on the thread count.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace shatter {
+
+class Workers {
+public:
+    // `threads` in all, the caller included (1: no worker thread).
+    explicit Workers(unsigned threads);
+    ~Workers();
+    Workers(const Workers&) = delete;
+    Workers& operator=(const Workers&) = delete;
+    unsigned threads() const { return unsigned(pool_.size()) + 1; }
+    // item(i) for every i in [0, n), in chunks of `chunk` taken in turn by whichever thread is
+    // free; returns when all are done.
+    void run(size_t n, size_t chunk, const std::function<void(size_t)>& item);
+
+private:
+    void work();
+    void take();  // runs chunks of the current loop until none is left
+    std::vector<std::thread> pool_;
+    std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    uint64_t generation_ = 0;  // one per run()
+    bool stop_ = false;
+    unsigned busy_ = 0;  // worker threads inside the current loop
+    const std::function<void(size_t)>* item_ = nullptr;
+    size_t n_ = 0, chunk_ = 1;
+    std::atomic<size_t> next_{0};
+};
+
+// The number of threads a run uses: SHATTER_THREADS when set (1 to 64), else the processor's
+// cores (at most 8).
+unsigned default_threads();
+
+}  // namespace shatter
