@@ -38,11 +38,11 @@ public:
         : btConvexConvexAlgorithm(ci.m_manifold, ci, a, b, pd, 0, 3), pd_(pd), own_(ci.m_manifold == nullptr) {}
     void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
                           const btDispatcherInfo& info, btManifoldResult* out) override;
-    // The pair of these proxies (in this order) is proven apart by the bound: processCollision
-    // would do nothing.
     // processCollision touches only this pair's own state and manifold (made by an earlier call):
     // it may run beside other pairs' (PieceDispatcher::workers).
     bool independent() { return own_ && getManifold() != nullptr; }
+    // The pair of these proxies (in this order) is proven apart by the bound: processCollision
+    // would do nothing.
     bool apart(const btBroadphaseProxy& a, const btBroadphaseProxy& b, const btScalar* turned) const {
         if (!has_gap_ || a.m_uniqueId != id_a_ || b.m_uniqueId != id_b_) return false;
         const btVector3& ca = static_cast<const btCollisionObject*>(a.m_clientObject)->getWorldTransform().getOrigin();
@@ -166,8 +166,6 @@ public:
     };
     Linked linked;
 
-    // btCollisionDispatcher::needsCollision, with the linked pairs (the only bodies
-    // checkCollideWith refuses: nothing else marks bodies to ignore) from `linked`.
     // The narrow phase of the pairs whose algorithm holds its own manifold already (pieces'
     // hulls after their first contact test, pieces on the ground) runs on `workers`' threads after
     // the walk over the pairs; the walk itself, which makes and frees algorithms and manifolds in
@@ -186,6 +184,8 @@ public:
     void dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info,
                                    btDispatcher* dispatcher) override;
 
+    // btCollisionDispatcher::needsCollision, with the linked pairs (the only bodies
+    // checkCollideWith refuses: nothing else marks bodies to ignore) from `linked`.
     bool needsCollision(const btCollisionObject* a, const btCollisionObject* b) override {
         if (a->getUserIndex() >= 0 && b->getUserIndex() >= 0 && ignored.contains(a->getUserIndex(), b->getUserIndex()))
             return false;

@@ -44,6 +44,7 @@ private:
 }  // namespace
 
 struct BulletWorld::Impl {
+    std::unique_ptr<Workers> workers;  // (first: the dispatcher holds it until the world is gone)
     btDefaultCollisionConfiguration config;
     PieceDispatcher dispatcher{&config};
     // Sweep and prune keeps exactly the pairs whose boxes overlap; btDbvtBroadphase keeps every
@@ -58,7 +59,6 @@ struct BulletWorld::Impl {
     bt32BitAxisSweep3 broadphase;
     PieceSolver solver;
     PieceWorld world{&dispatcher, &broadphase, &solver, &config};
-    std::unique_ptr<Workers> workers;
 
     struct PieceBody {
         btRigidBody* body = nullptr;
