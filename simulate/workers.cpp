@@ -36,6 +36,7 @@ void Workers::work() {
             wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
             if (stop_) return;
             seen = generation_;
+            if (!open_) continue;  // woke too late: the loop is over
             ++busy_;
         }
         take();
@@ -59,12 +60,14 @@ void Workers::run(size_t n, size_t chunk, const std::function<void(size_t)>& ite
         chunk_ = std::max<size_t>(chunk, 1);
         next_.store(0);
         ++generation_;
+        open_ = true;
     }
     wake_.notify_all();
     take();
     std::unique_lock<std::mutex> lock(mutex_);
-    // Every worker that woke for this loop has left it (one that has not woken yet finds no item
-    // left when it does: next_ stays past n_ until the next run, which waits for busy_ again).
+    // No worker joins from here on (one that wakes now goes back to sleep), and those that joined
+    // finish their chunks: then none is left inside the loop when the next one is set up.
+    open_ = false;
     done_.wait(lock, [&] { return busy_ == 0; });
 }
 

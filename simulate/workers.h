@@ -33,6 +33,7 @@ private:
     std::condition_variable wake_, done_;
     uint64_t generation_ = 0;  // one per run()
     bool stop_ = false;
+    bool open_ = false;  // workers may join the current loop (until the caller has run out of items)
     unsigned busy_ = 0;  // worker threads inside the current loop
     const std::function<void(size_t)>* item_ = nullptr;
     size_t n_ = 0, chunk_ = 1;
