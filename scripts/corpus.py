@@ -197,6 +197,13 @@ def books_ratio(r):
     return (r["injected"] + r.get("held", 0.0)) / (r["alpha"] * r["stored"])
 
 
+def held_J(r):
+    """The energy a run ends with held in cracks, 0 when it is round-off (within 1e-9 of alpha x
+    stored, as the run summary's books line)."""
+    held = r.get("held", 0.0)
+    return held if abs(held) > 1e-9 * r["alpha"] * r["stored"] else 0.0
+
+
 def write_run_table(results, path, workdir):
     ok = [r for r in results if verdict(r) == "ok"]
     failed = [r for r in results if verdict(r).startswith("FAIL")]
@@ -223,7 +230,7 @@ def write_run_table(results, path, workdir):
         % sum(any('joints = "direct"' in a for a in r.get("auto", [])) for r in ok),
         "| (injected + held) / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
         "| runs ending with energy held in cracks not yet opened | %d (%.0f%% of alpha x stored at most) |"
-        % (sum(r.get("held", 0) > 1e-9 * r["alpha"] * r["stored"] for r in ok),  # above round-off
+        % (sum(held_J(r) > 0 for r in ok),
            100 * max((r.get("held", 0) / (r["alpha"] * r["stored"]) for r in ok if r["alpha"] > 0 and r["stored"] > 0),
                      default=0)),
         "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
@@ -249,7 +256,7 @@ def write_run_table(results, path, workdir):
         view = "%d, %d" % (r["in_view_first"], r["in_view_least"]) if "in_view_first" in r else "-"
         still = "%.2f" % r["still_s"] if "still_s" in r else "-"
         lines.append("| %s | ok | %s | %d | %d | %.3g | %s | %.3g | %s | %s | %.1f |" % (
-            shown, r["pieces"], r["breaks"], r["fragments"], r["stored"], ratio, r.get("held", 0.0), view, still,
+            shown, r["pieces"], r["breaks"], r["fragments"], r["stored"], ratio, held_J(r), view, still,
             r["seconds"]))
     with open(path + ".tmp", "w") as out:
         out.write("\n".join(lines) + "\n")
