@@ -6,10 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <string>
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <thread>
 
 #include <fmt/format.h>

@@ -1,8 +1,9 @@
 #include "simulate/workers.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cstdlib>
-#include <string>
 
 namespace shatter {
 
@@ -72,12 +73,18 @@ void Workers::run(size_t n, size_t chunk, const std::function<void(size_t)>& ite
 }
 
 unsigned default_threads() {
+    const unsigned cores = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
     if (const char* env = std::getenv("SHATTER_THREADS")) {
         char* end = nullptr;
         const long n = std::strtol(env, &end, 10);
         if (end != env && *end == 0 && n >= 1 && n <= 64) return unsigned(n);
+        static bool warned = false;
+        if (!warned)
+            spdlog::warn("SHATTER_THREADS=\"{}\" is not a number of threads from 1 to 64; using {} (the cores; fix: "
+                         "unset it or give e.g. SHATTER_THREADS=2)", env, cores);
+        warned = true;
     }
-    return std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+    return cores;
 }
 
 }  // namespace shatter

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -41,7 +42,7 @@ private:
 };
 
 // The number of threads a run uses: SHATTER_THREADS when set (1 to 64), else the processor's
-// cores (at most 8).
+// cores (at most 8). A value that is not a number from 1 to 64 is warned about and not used.
 unsigned default_threads();
 
 }  // namespace shatter
