@@ -28,8 +28,8 @@ int main(int argc, char** argv) {
                  "(pieces -> motion and breaks), render (frames), diff (compare renders), info (summarize any\n"
                  "stage file)."};
     app.footer("Environment: SHATTER_THREADS=N, the threads the simulation's contact tests run on (default: the\n"
-               "processor's cores, at most 8; batch gives each parallel run its share). The output is the same for\n"
-               "any number.");
+               "cores the process may run on, its CPU affinity, at most 8; batch gives each parallel run its share).\n"
+               "The output is the same for any number.");
     app.set_version_flag("--version", std::string("shatter ") + kVersion);
     std::string log_level = "info";
     app.add_option("--log-level", log_level, "diagnostics on stderr: trace, debug, info, warn, error, off (default: info)")

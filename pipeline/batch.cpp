@@ -22,6 +22,7 @@
 #include "pipeline/process.h"
 #include "pipeline/sheets.h"
 #include "render/render.h"
+#include "simulate/workers.h"
 
 namespace shatter {
 
@@ -151,7 +152,7 @@ BatchResult run_batch(const BatchFile& batch, const BatchOptions& options) {
     // The runs share the cores: each simulates on its share of them (simulate/workers.h; the
     // result does not depend on it), unless the user's environment says otherwise.
     if (workers > 1 && !std::getenv("SHATTER_THREADS"))
-        setenv("SHATTER_THREADS", std::to_string(std::max(1u, std::thread::hardware_concurrency() / workers)).c_str(), 0);
+        setenv("SHATTER_THREADS", std::to_string(std::max(1u, usable_cores() / workers)).c_str(), 0);
     BatchResult result;
     for (const BatchJob& job : batch.jobs)
         for (const BatchRun& run : job.runs)

@@ -1,5 +1,6 @@
 #include "simulate/workers.h"
 
+#include <sched.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -72,8 +73,16 @@ void Workers::run(size_t n, size_t chunk, const std::function<void(size_t)>& ite
     done_.wait(lock, [&] { return busy_ == 0; });
 }
 
+unsigned usable_cores() {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    const unsigned n = sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? unsigned(CPU_COUNT(&allowed))
+                                                                            : std::thread::hardware_concurrency();
+    return std::max(n, 1u);
+}
+
 unsigned default_threads() {
-    const unsigned cores = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+    const unsigned cores = std::min(usable_cores(), 8u);
     if (const char* env = std::getenv("SHATTER_THREADS")) {
         char* end = nullptr;
         const long n = std::strtol(env, &end, 10);

@@ -41,8 +41,12 @@ private:
     std::atomic<size_t> next_{0};
 };
 
-// The number of threads a run uses: SHATTER_THREADS when set (1 to 64), else the processor's
-// cores (at most 8). A value that is not a number from 1 to 64 is warned about and not used.
+// The cores this process may run on: its CPU affinity (a Slurm job's or a container's cpuset),
+// else the machine's; at least 1.
+unsigned usable_cores();
+
+// The number of threads a run uses: SHATTER_THREADS when set (1 to 64), else the cores the
+// process may run on (its CPU affinity: a Slurm job's or a container's cpuset; at most 8). A value that is not a number from 1 to 64 is warned about and not used.
 unsigned default_threads();
 
 }  // namespace shatter

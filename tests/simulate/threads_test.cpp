@@ -1,10 +1,14 @@
 // The step's contact tests on several threads (simulate/workers.h, PieceDispatcher::workers):
 // a run's result does not depend on the number of threads.
 #include <gtest/gtest.h>
+#include <sched.h>
+
+#include <cstdlib>
 
 #include "core/trajectory.h"
 #include "scenes/box_model.h"
 #include "simulate/simulate.h"
+#include "simulate/workers.h"
 
 namespace shatter {
 namespace {
@@ -38,6 +42,24 @@ TEST(Threads, AnyNumberOfThreadsGivesTheSameRun) {
         ASSERT_EQ(many.breaks.size(), one.breaks.size()) << threads << " threads";
         EXPECT_TRUE(encode_trajectory(many.trajectory) == bytes) << threads << " threads";
     }
+}
+
+// The default is the cores the process may run on: on one core (a Slurm job given one CPU of a
+// large node), one thread.
+TEST(Threads, ByDefaultAsManyAsTheCoresTheProcessMayRunOn) {
+    if (std::getenv("SHATTER_THREADS")) GTEST_SKIP() << "SHATTER_THREADS is set";
+    cpu_set_t all, one;
+    ASSERT_EQ(sched_getaffinity(0, sizeof(all), &all), 0);
+    EXPECT_EQ(usable_cores(), unsigned(CPU_COUNT(&all)));
+    int first = 0;
+    while (!CPU_ISSET(first, &all)) ++first;
+    CPU_ZERO(&one);
+    CPU_SET(first, &one);
+    ASSERT_EQ(sched_setaffinity(0, sizeof(one), &one), 0);  // this thread only
+    const unsigned cores = usable_cores(), threads = default_threads();
+    ASSERT_EQ(sched_setaffinity(0, sizeof(all), &all), 0);
+    EXPECT_EQ(cores, 1u);
+    EXPECT_EQ(threads, 1u);
 }
 
 }  // namespace
