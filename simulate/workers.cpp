@@ -8,10 +8,6 @@
 
 namespace shatter {
 
-Workers::Workers(unsigned threads) {
-    for (unsigned i = 1; i < threads; ++i) pool_.emplace_back([this] { work(); });
-}
-
 Workers::~Workers() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -51,10 +47,11 @@ void Workers::work() {
 }
 
 void Workers::run(size_t n, size_t chunk, const std::function<void(size_t)>& item) {
-    if (pool_.empty() || n <= chunk) {
+    if (threads_ == 1 || n <= chunk) {
         for (size_t i = 0; i < n; ++i) item(i);
         return;
     }
+    while (pool_.size() + 1 < threads_) pool_.emplace_back([this] { work(); });
     {
         std::lock_guard<std::mutex> lock(mutex_);
         item_ = &item;

@@ -3,6 +3,7 @@
 // computes, so a run's bytes do not depend on the thread count.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -16,12 +17,13 @@ namespace shatter {
 
 class Workers {
 public:
-    // `threads` in all, the caller included (1: no worker thread).
-    explicit Workers(unsigned threads);
+    // `threads` in all, the caller included (1: no worker thread). The worker threads start with
+    // the first loop that has items for them.
+    explicit Workers(unsigned threads) : threads_(std::max(threads, 1u)) {}
     ~Workers();
     Workers(const Workers&) = delete;
     Workers& operator=(const Workers&) = delete;
-    unsigned threads() const { return unsigned(pool_.size()) + 1; }
+    unsigned threads() const { return threads_; }
     // item(i) for every i in [0, n), in chunks of `chunk` taken in turn by whichever thread is
     // free; returns when all are done.
     void run(size_t n, size_t chunk, const std::function<void(size_t)>& item);
@@ -29,6 +31,7 @@ public:
 private:
     void work();
     void take();  // runs chunks of the current loop until none is left
+    const unsigned threads_;
     std::vector<std::thread> pool_;
     std::mutex mutex_;
     std::condition_variable wake_, done_;
@@ -46,7 +49,8 @@ private:
 unsigned usable_cores();
 
 // The number of threads a run uses: SHATTER_THREADS when set (1 to 64), else the cores the
-// process may run on (its CPU affinity: a Slurm job's or a container's cpuset; at most 8). A value that is not a number from 1 to 64 is warned about and not used.
+// process may run on (its CPU affinity: a Slurm job's or a container's cpuset; at most 8). A
+// value that is not a number from 1 to 64 is warned about and not used.
 unsigned default_threads();
 
 }  // namespace shatter
