@@ -5,8 +5,14 @@
 // After an intended change (a new default, a physics fix), re-pin with
 //   SHATTER_UPDATE_PINS=1 build/tests/cli_tests --gtest_filter='DeterminismPins.*'
 // and say in the commit message why the bytes changed.
+//
+// A frame's bytes are also the renderer's: a point release of Mesa's software rasterizer
+// (Debian's libosmesa6) moves pixels by a level here and there. The pins record the renderer's
+// package version; on another version the frames are not compared (the test says so), the model
+// and trajectory bytes still are.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -42,6 +48,12 @@ std::map<std::string, std::string> read_pins() {
     return pins;
 }
 
+// The installed renderer's package version, or "unknown" where dpkg does not say.
+std::string renderer_version() {
+    const auto r = testing_support::run_command({"/usr/bin/dpkg-query", "-W", "--showformat=${Version}", "libosmesa6"});
+    return r.exit_code == 0 && !r.out.empty() ? r.out : "unknown";
+}
+
 std::string hash_of(const std::string& path) { return fmt::format("{:016x}", fnv1a64(slurp(path))); }
 
 TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
@@ -62,16 +74,25 @@ TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
         std::ofstream pins(kPins);
         pins << "# FNV-1a 64 of each built-in scene's model, trajectory and frame " << kFrame
              << " (0.2 s, 160x90): tests/cli/determinism_pins_test.cpp\n";
+        pins << "renderer libosmesa6 " << renderer_version() << '\n';
         for (const auto& [name, hash] : got) pins << name << ' ' << hash << '\n';
         GTEST_SKIP() << "pins rewritten: " << kPins;
     }
-    const auto pins = read_pins();
+    auto pins = read_pins();
+    const std::string pinned_renderer = pins["renderer"];
+    pins.erase("renderer");
+    const std::string renderer = "libosmesa6 " + renderer_version();
+    const bool same_renderer = pinned_renderer == renderer;
     ASSERT_EQ(pins.size(), got.size()) << "re-pin with SHATTER_UPDATE_PINS=1 (see the file's comment)";
     for (const auto& [name, hash] : got) {
         const auto it = pins.find(name);
         ASSERT_NE(it, pins.end()) << name << " is not pinned";
+        if (name.ends_with(".frame") && !same_renderer) continue;
         EXPECT_EQ(it->second, hash) << name << ": the bytes changed. If intended, re-pin with SHATTER_UPDATE_PINS=1";
     }
+    if (!same_renderer)
+        std::printf("frames not compared: pinned with %s, rendered with %s (re-pin with SHATTER_UPDATE_PINS=1)\n",
+                    pinned_renderer.c_str(), renderer.c_str());
 }
 
 }  // namespace
