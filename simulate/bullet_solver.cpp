@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -94,6 +95,15 @@ void prefetch_body(const btRigidBody& b) {
     for (int line = 0; line < 21; line += 2) __builtin_prefetch(p + 64 * line, 0);
 }
 
+// btSolverBody::internalApplyImpulse, the same arithmetic, inlined.
+__attribute__((always_inline)) inline void apply_impulse(btSolverBody& body, const btVector3& linear,
+                                                         const btVector3& angular, btScalar impulse) {
+    if (body.m_originalBody) {
+        body.m_deltaLinearVelocity += linear * impulse * body.m_linearFactor;
+        body.m_deltaAngularVelocity += angular * (impulse * body.m_angularFactor);
+    }
+}
+
 }  // namespace
 
 // A row's impulse update, clamped to [lower, upper] (or only below, for contacts), applied to both
@@ -118,9 +128,48 @@ __attribute__((always_inline)) inline btScalar PieceSolver::solve_row(btSolverCo
     } else {
         c.m_appliedImpulse = sum;
     }
-    a.internalApplyImpulse(c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
-    b.internalApplyImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
+    apply_impulse(a, c.m_contactNormal1 * a.internalGetInvMass(), c.m_angularComponentA, delta);
+    apply_impulse(b, c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
     return delta * (1. / c.m_jacDiagABInv);
+}
+
+// solve_row for a joint row of joint_rows_: the same arithmetic, with the row's linear direction
+// +-e_k: n . v is +-v_k and the impulse's linear part changes component k alone, exactly (the
+// other components gain +-0, and a velocity change that starts at +0 is never -0).
+__attribute__((always_inline)) inline btScalar PieceSolver::solve_joint_row(JointRow& c, const JointRowBodies& ids) {
+    btSolverBody& a = m_tmpSolverBodyPool[ids.a];
+    btSolverBody& b = m_tmpSolverBodyPool[ids.b];
+    const int k = ids.axis;
+    btVector3& linear_a = a.internalGetDeltaLinearVelocity();
+    btVector3& linear_b = b.internalGetDeltaLinearVelocity();
+    btVector3& angular_a = a.internalGetDeltaAngularVelocity();
+    btVector3& angular_b = b.internalGetDeltaAngularVelocity();
+    btScalar delta = c.rhs - c.applied * c.cfm;
+    const btScalar va = linear_a[k] + (c.relpos_a[0] * angular_a[0] + c.relpos_a[1] * angular_a[1] +
+                                       c.relpos_a[2] * angular_a[2]);
+    const btScalar vb = -linear_b[k] + (c.relpos_b[0] * angular_b[0] + c.relpos_b[1] * angular_b[1] +
+                                        c.relpos_b[2] * angular_b[2]);
+    delta -= va * c.jac_diag_inv;
+    delta -= vb * c.jac_diag_inv;
+    const btScalar sum = c.applied + delta;
+    if (sum < -SIMD_INFINITY) {
+        delta = -SIMD_INFINITY - c.applied;
+        c.applied = -SIMD_INFINITY;
+    } else if (sum > SIMD_INFINITY) {
+        delta = SIMD_INFINITY - c.applied;
+        c.applied = SIMD_INFINITY;
+    } else {
+        c.applied = sum;
+    }
+    if (a.m_originalBody) {
+        linear_a[k] += a.internalGetInvMass()[k] * delta;
+        for (int i = 0; i < 3; ++i) angular_a[i] += c.angular_a[i] * delta;
+    }
+    if (b.m_originalBody) {
+        linear_b[k] += -b.internalGetInvMass()[k] * delta;
+        for (int i = 0; i < 3; ++i) angular_b[i] += c.angular_b[i] * delta;
+    }
+    return delta * (1. / c.jac_diag_inv);
 }
 
 // One projected Gauss-Seidel pass, as btSequentialImpulseConstraintSolver::solveSingleIteration
@@ -142,6 +191,16 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
         // The rows' own impulses are needed where the convergence is checked (from the step's last
         // own iteration on) and where the iterations stop without a check.
         add(solve_joints_directly(false, extra_ || !(tolerance_ > 0) || iteration + 1 >= own_iterations_));
+    } else if (tolerance_ > 0 && compact_) {
+        btScalar most = 0;
+        for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
+            const int r = m_orderNonContactConstraintPool[j];
+            JointRow& row = joint_rows_[size_t(r)];
+            const btScalar correction = solve_joint_row(row, joint_row_bodies_[size_t(r)]);  // dl w
+            add(correction);
+            most = btMax(most, btFabs(correction * row.jac_diag_inv) * row_scale_[r]);
+        }
+        joint_residual_ = most;
     } else if (tolerance_ > 0) {
         btScalar most = 0;
         for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
@@ -153,6 +212,11 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
             most = btMax(most, btFabs(correction * row.m_jacDiagABInv) * row_scale_[r]);
         }
         joint_residual_ = most;
+    } else if (compact_) {
+        for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
+            const int r = m_orderNonContactConstraintPool[j];
+            add(solve_joint_row(joint_rows_[size_t(r)], joint_row_bodies_[size_t(r)]));
+        }
     } else {
         for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
             btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[m_orderNonContactConstraintPool[j]];
@@ -619,6 +683,13 @@ void PieceSolver::convertJoints(btTypedConstraint** constraints, int count, cons
         rows += size.m_numConstraintRows;
     }
     m_tmpSolverNonContactConstraintPool.resizeNoInitialize(rows);
+    // The passes' copy of the rows (JointRow), made as each constraint's rows are set up.
+    compact_ = !direct_ && !(info.m_solverMode & (SOLVER_RANDMIZE_ORDER | SOLVER_INTERLEAVE_CONTACT_AND_FRICTION_CONSTRAINTS));
+    if (compact_) {
+        joint_rows_.resize(size_t(rows));
+        joint_row_bodies_.resize(size_t(rows));
+    }
+    int fewest_iterations = std::numeric_limits<int>::max();
     int row = 0;
     for (int i = 0; i < count; ++i) {
         if (i + kPrefetchConstraints < count) {
@@ -633,9 +704,45 @@ void PieceSolver::convertJoints(btTypedConstraint** constraints, int count, cons
             const int a = getOrInitSolverBody(c->getRigidBodyA(), info.m_timeStep);
             const int b = getOrInitSolverBody(c->getRigidBodyB(), info.m_timeStep);
             convertJoint(&m_tmpSolverNonContactConstraintPool[row], c, size, a, b, info);
+            for (int r = row; compact_ && r < row + size.m_numConstraintRows; ++r) {
+                const btSolverConstraint& from = m_tmpSolverNonContactConstraintPool[r];
+                fewest_iterations = std::min(fewest_iterations, from.m_overrideNumSolverIterations);
+                compact_ = copy_joint_row(from, a, b, &joint_rows_[size_t(r)], &joint_row_bodies_[size_t(r)]);
+            }
         }
         row += size.m_numConstraintRows;
     }
+    // A row that takes fewer passes than the solve's (a constraint's own iteration count) is
+    // skipped in the passes past its count: Bullet's rows then.
+    if (fewest_iterations < btMax(m_maxOverrideNumSolverIterations, info.m_numIterations)) compact_ = false;
+}
+
+bool PieceSolver::copy_joint_row(const btSolverConstraint& from, int a, int b, JointRow* to, JointRowBodies* bodies) const {
+    int axis = -1;
+    for (int k = 0; k < 3; ++k)
+        if (from.m_contactNormal1[k] == btScalar(1) && from.m_contactNormal2[k] == btScalar(-1)) axis = k;
+    if (axis < 0) return false;
+    for (int k = 0; k < 3; ++k)
+        if (k != axis && (from.m_contactNormal1[k] != btScalar(0) || from.m_contactNormal2[k] != btScalar(0)))
+            return false;
+    if (from.m_lowerLimit != -SIMD_INFINITY || from.m_upperLimit != SIMD_INFINITY) return false;
+    const btVector3 one(1, 1, 1);
+    for (const int i : {a, b}) {
+        const btSolverBody& body = m_tmpSolverBodyPool[i];
+        if (!(body.m_linearFactor == one) || !(body.m_angularFactor == one)) return false;
+    }
+    for (int k = 0; k < 3; ++k) {
+        to->relpos_a[k] = from.m_relpos1CrossNormal[k];
+        to->relpos_b[k] = from.m_relpos2CrossNormal[k];
+        to->angular_a[k] = from.m_angularComponentA[k];
+        to->angular_b[k] = from.m_angularComponentB[k];
+    }
+    to->rhs = from.m_rhs;
+    to->cfm = from.m_cfm;
+    to->jac_diag_inv = from.m_jacDiagABInv;
+    to->applied = from.m_appliedImpulse;
+    *bodies = {from.m_solverBodyIdA, from.m_solverBodyIdB, axis};
+    return true;
 }
 
 btScalar PieceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies,
@@ -745,6 +852,7 @@ btScalar PieceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, 
         }
     // Bullet's own write-back then has no joint rows left to visit; contacts and bodies as usual.
     m_tmpSolverNonContactConstraintPool.resizeNoInitialize(0);
+    compact_ = false;
     return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
 }
 
@@ -763,8 +871,9 @@ void PieceSolver::write_back_joints(const btContactSolverInfo& info) {
             __builtin_prefetch(ahead, 1);
             __builtin_prefetch(ahead->getJointFeedback(), 1);
         }
-        const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[j];
+        btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[j];
         auto* constraint = static_cast<btTypedConstraint*>(row.m_originalContactPoint);
+        if (compact_) row.m_appliedImpulse = joint_rows_[size_t(j)].applied;
         const btScalar impulse = row.m_appliedImpulse;
         if (btJointFeedback* fb = constraint->getJointFeedback()) {
             fb->m_appliedForceBodyA += row.m_contactNormal1 * impulse * inv_h;
