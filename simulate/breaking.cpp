@@ -33,10 +33,11 @@ namespace {
 
 // The kicks of a break as the pieces' joints pass them on (joined_response.h), adding kinetic
 // energy `released` in `frame`: their magnitudes into `kicks` (which holds their directions), the
-// change of velocity of every piece of `joined` into `dv`. False when the joints hold the pair.
+// change of velocity of every piece of `joined` into `dv`, and the dynamic ones' inertia tensors
+// (world frame) into `inertia`. False when the joints hold the pair.
 bool joined_kicks(const BulletWorld& world, size_t c, const BulletWorld::JoinedPieces& joined, const Vec3& pivot,
                   const std::array<BodyAtPivot, 2>& free, const EnergizeSettings& settings, const Vec3& frame,
-                  double released, BreakKicks* kicks, std::vector<VelocityChange>* dv) {
+                  double released, BreakKicks* kicks, std::vector<VelocityChange>* dv, std::vector<Mat3>* inertia) {
     if (joined.held) return false;
     std::vector<JoinedBody> bodies;
     std::vector<JoinedJoint> joints;
@@ -79,13 +80,15 @@ bool joined_kicks(const BulletWorld& world, size_t c, const BulletWorld::JoinedP
     }
     // Per unit magnitude: the energy terms mu b + mu^2 a of each body, summed per side.
     double a[2] = {0, 0}, b[2] = {0, 0};
+    inertia->clear();
     for (size_t i = 0; i < bodies.size(); ++i) {
         if (!bodies[i].dynamic) continue;
         const int s = joined.parted && i >= joined.side_b ? 1 : 0;
-        const Mat3 inertia = bodies[i].inv_inertia.inverse();
+        inertia->push_back(bodies[i].inv_inertia.inverse());
+        const Mat3& turn = inertia->back();
         const double m = 1.0 / bodies[i].inv_mass;
-        a[s] += 0.5 * (m * u[i].linear.squaredNorm() + u[i].angular.dot(inertia * u[i].angular));
-        if (settings.exact_energy) b[s] += m * (v[i].linear - frame).dot(u[i].linear) + v[i].angular.dot(inertia * u[i].angular);
+        a[s] += 0.5 * (m * u[i].linear.squaredNorm() + u[i].angular.dot(turn * u[i].angular));
+        if (settings.exact_energy) b[s] += m * (v[i].linear - frame).dot(u[i].linear) + v[i].angular.dot(turn * u[i].angular);
     }
     if (!(a[0] + a[1] > kHeldResponse * free_a)) return false;
     const double mu = kick_magnitude(a[0] + a[1], b[0] + b[1], released);
@@ -125,15 +128,15 @@ BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyA
     r.stiffness = world.stiffness(c);
     r.alpha = settings.alpha;
     const Vec3 frame = frame_velocity ? *frame_velocity : pair_frame_velocity(load[0], load[1]);
-    // The kinetic energy of the bodies the kicks move, in a frame moving at `v`.
-    auto kinetic = [&](const Vec3& v) {
-        return joined ? world.kinetic_energy_of(joined->pieces, v) : world.kinetic_energy_of_pair(c, v);
-    };
+    // The kinetic energy of the bodies the kicks move, in the pair's frame and in the world's.
+    const std::vector<uint32_t> pair = {r.piece_a, r.piece_b};
+    const std::vector<uint32_t>& moved = joined ? joined->pieces : pair;
+    std::vector<Mat3> inertia;  // of the moved pieces, for both books
     std::vector<VelocityChange> dv;
     if (joined) {
         r.kicks = kick_directions(now[0], now[1], r.stiffness, settings, key);
         const double own = settings.alpha * r.kicks.stored_energy;
-        if (!joined_kicks(world, c, *joined, pivot, now, settings, frame, own + release, &r.kicks, &dv)) {
+        if (!joined_kicks(world, c, *joined, pivot, now, settings, frame, own + release, &r.kicks, &dv, &inertia)) {
             r.held_energy = own;
             return r;
         }
@@ -141,11 +144,13 @@ BreakRecord energize_broken(BulletWorld& world, size_t c, const std::array<BodyA
     } else {
         r.kicks = energize(now[0], now[1], r.stiffness, settings, key, frame);
     }
-    const double before = kinetic(frame), before_world = kinetic(Vec3::Zero());
+    double before = 0, before_world = 0, after = 0, after_world = 0;
+    world.kinetic_energies_of(moved, frame, &before, &before_world, &inertia);
     if (joined) world.add_velocities(joined->pieces, dv);
     else world.apply_kicks(c, pivot, r.kicks);
-    r.injected_energy = kinetic(frame) - before;
-    r.momentum_work = kinetic(Vec3::Zero()) - before_world - r.injected_energy;
+    world.kinetic_energies_of(moved, frame, &after, &after_world, &inertia);
+    r.injected_energy = after - before;
+    r.momentum_work = after_world - before_world - r.injected_energy;
     return r;
 }
 

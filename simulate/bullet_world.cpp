@@ -78,6 +78,7 @@ struct BulletWorld::Impl {
     std::vector<btRigidBody*> projectiles;  // dynamic: in the books beside the pieces
     std::vector<Joint> joints;
     std::vector<std::vector<uint32_t>> joints_of_piece;  // the joints with a constraint at each piece
+    mutable std::vector<uint32_t> joined_index;  // joined_bodies' scratch: per piece, UINT32_MAX between calls
     // Each joint's pivot (the mean of where its two pieces place it) as of pose count pivot_at[j]:
     // the breaks of one step read the pivots of the same joined pieces again and again (a
     // 1,000-piece bunny's impact breaks hundreds of joints in a step, each kick solved through up
@@ -1017,7 +1018,8 @@ void BulletWorld::joined_bodies(const JoinedPieces& joined, std::vector<JoinedBo
     const Impl& m = *impl_;
     bodies->resize(joined.pieces.size());
     velocities->resize(joined.pieces.size());
-    std::vector<uint32_t> index(m.pieces.size(), UINT32_MAX);
+    std::vector<uint32_t>& index = m.joined_index;
+    index.resize(m.pieces.size(), UINT32_MAX);
     for (size_t i = 0; i < joined.pieces.size(); ++i) {
         const Impl::PieceBody& piece = m.pieces[joined.pieces[i]];
         const btRigidBody& b = *piece.body;
@@ -1032,6 +1034,7 @@ void BulletWorld::joined_bodies(const JoinedPieces& joined, std::vector<JoinedBo
     joints->clear();
     for (uint32_t j : joined.joints)
         joints->push_back({index[m.joints[j].piece_a], index[m.joints[j].piece_b], m.joint_pivot(j)});
+    for (uint32_t p : joined.pieces) index[p] = UINT32_MAX;
 }
 
 void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv) {
@@ -1076,15 +1079,23 @@ double BulletWorld::kinetic_energy() const {
     return e;
 }
 
-double BulletWorld::kinetic_energy_of_pair(size_t c, const Vec3& frame) const {
-    return kinetic_energy_of({impl_->joints[c].piece_a, impl_->joints[c].piece_b}, frame);
-}
-
-double BulletWorld::kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame) const {
-    double e = 0;
-    for (uint32_t p : pieces)
-        if (impl_->pieces[p].dynamic) e += body_kinetic_energy(*impl_->pieces[p].body, frame);
-    return e;
+void BulletWorld::kinetic_energies_of(const std::vector<uint32_t>& pieces, const Vec3& frame, double* in_frame,
+                                      double* in_world, std::vector<Mat3>* inertia) const {
+    const bool known = !inertia->empty();
+    double e = 0, e_world = 0;
+    size_t k = 0;
+    for (uint32_t p : pieces) {
+        if (!impl_->pieces[p].dynamic) continue;
+        const btRigidBody& b = *impl_->pieces[p].body;
+        if (!known) inertia->push_back(to_eigen(b.getInvInertiaTensorWorld()).inverse());
+        const Vec3 v = to_eigen(b.getLinearVelocity()), w = to_eigen(b.getAngularVelocity());
+        const double turn = 0.5 * w.dot((*inertia)[k++] * w);
+        const Vec3 relative = v - frame;
+        e += 0.5 * relative.squaredNorm() / b.getInvMass() + turn;
+        e_world += 0.5 * v.squaredNorm() / b.getInvMass() + turn;
+    }
+    *in_frame = e;
+    *in_world = e_world;
 }
 
 double BulletWorld::potential_energy() const {

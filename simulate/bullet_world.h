@@ -205,14 +205,16 @@ public:
     void add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv);
     // The velocity of the centre of mass of the given pieces' dynamic ones (zero if none) (unit: m/s).
     Vec3 centre_velocity(const std::vector<uint32_t>& pieces) const;
-    // Of the given pieces' dynamic ones, in a frame moving at velocity `frame` (unit: J).
-    double kinetic_energy_of(const std::vector<uint32_t>& pieces, const Vec3& frame = Vec3::Zero()) const;
+    // The kinetic energy of the given pieces' dynamic ones in a frame moving at velocity `frame`
+    // and in the world's (unit: J). `inertia` holds each dynamic piece's inertia tensor in the
+    // world frame, in order: worked out when empty, else taken from there (for the same poses: a
+    // kick changes velocities only).
+    void kinetic_energies_of(const std::vector<uint32_t>& pieces, const Vec3& frame, double* in_frame,
+                             double* in_world, std::vector<Mat3>* inertia) const;
 
     // Energy books over the dynamic pieces and the projectiles (driven pieces and kinematic bodies
     // are scripted, not counted).
     double kinetic_energy() const;    // (unit: J)
-    // Of the constraint's dynamic pieces, in a frame moving at velocity `frame` (unit: J).
-    double kinetic_energy_of_pair(size_t c, const Vec3& frame = Vec3::Zero()) const;
     double potential_energy() const;  // -sum m g.x (unit: J)
     double stored_energy() const;     // sum over active constraints of |f|^2 / 2k (unit: J)
     // The same read from the poses: sum over active constraints of k |d|^2 / 2, d the stretch

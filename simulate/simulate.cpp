@@ -315,8 +315,9 @@ private:
         const auto start = std::chrono::steady_clock::now();
         // The energy held by earlier breaks whose two pieces this one parts.
         double release = 0;
-        std::vector<bool> parted(held_.size(), false);
+        std::vector<bool> parted;  // per held_ entry (only a break that parts can release one)
         if (joined && joined->parted) {
+            parted.assign(held_.size(), false);
             std::vector<int8_t> side(world_.pieces(), -1);
             for (size_t i = 0; i < joined->pieces.size(); ++i) side[joined->pieces[i]] = int8_t(i >= joined->side_b);
             // Parted: one on each side; or one on either side and the other not joined to it any
