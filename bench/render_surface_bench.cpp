@@ -49,9 +49,13 @@ int main(int argc, char** argv) {
         RenderSurfaceSettings rs;
         rs.margin = margin_tets * diagonal / report.resolution;
         auto t2 = Clock::now();
-        const TriangleMesh simplified = simplify_surface(input, max_triangles);
+        // As prescore: a surface too large for CGAL's simplification is reduced first.
+        const TriangleMesh reduced = input.triangles.size() > kRenderSurfaceSimplifyLimit
+                                         ? reduce_surface(input, kRenderSurfaceReduced)
+                                         : input;
+        const TriangleMesh simplified = simplify_surface(reduced, max_triangles);
         const std::vector<RenderSurface> surfaces = render_surfaces(
-            simplified, model, rs, simplified.triangles.size() < input.triangles.size() ? &input : nullptr);
+            simplified, model, rs, simplified.triangles.size() < reduced.triangles.size() ? &reduced : nullptr);
         auto t3 = Clock::now();
         size_t fell_back = 0, triangles = 0, tet_triangles = 0;
         for (const RenderSurface& s : surfaces) fell_back += s.fell_back, triangles += s.triangles.size();

@@ -163,14 +163,26 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // pieces keep their tet surfaces (a choice, noted). One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
+    // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
+    TriangleMesh reduced;
+    const TriangleMesh* from = &surface;
     if (surface.triangles.size() > kRenderSurfaceSimplifyLimit) {
-        report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
-                            fmt::format("the surface has {} triangles, more than the {} that are simplified for "
-                                        "drawing within a few seconds; [prescore] render_surface = false to say so",
-                                        surface.triangles.size(), kRenderSurfaceSimplifyLimit));
-        return;
+        reduced = reduce_surface(surface, kRenderSurfaceReduced);
+        if (reduced.triangles.size() > kRenderSurfaceSimplifyLimit) {
+            report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
+                                fmt::format("the surface has {} triangles, and {} after a first simplification, more "
+                                            "than the {} that are simplified for drawing within a few seconds; "
+                                            "[prescore] render_surface = false to say so",
+                                            surface.triangles.size(), reduced.triangles.size(),
+                                            kRenderSurfaceSimplifyLimit));
+            return;
+        }
+        spdlog::info("render surfaces: the surface's {} triangles first reduced to {} (meshoptimizer) in {:.2f} s",
+                     surface.triangles.size(), reduced.triangles.size(),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        from = &reduced;
     }
-    const TriangleMesh cut = simplify_surface(surface, kRenderSurfaceTriangles);
+    const TriangleMesh cut = simplify_surface(*from, kRenderSurfaceTriangles);
     const double work = double(model.pieces.size()) * double(cut.triangles.size());
     if (work > kRenderSurfaceWork) {
         report.choices.note(
@@ -192,8 +204,8 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
         const std::string bytes = run_isolated(
             [&] {
                 Model m = model;
-                std::vector<RenderSurface> found = render_surfaces(
-                    cut, m, rs, cut.triangles.size() < surface.triangles.size() ? &surface : nullptr);
+                std::vector<RenderSurface> found =
+                    render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
                 return encode_model(m);
             },

@@ -1,9 +1,63 @@
 // The light half of render surfaces: flat fallbacks and crease-aware corner normals.
 #include "prescore/render_surface.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <meshoptimizer.h>
 
 namespace shatter {
+
+TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles) {
+    if (surface.triangles.size() <= max_triangles) return surface;
+    std::vector<float> positions;
+    positions.reserve(3 * surface.vertices.size());
+    for (const Vec3& v : surface.vertices)
+        for (int k = 0; k < 3; ++k) positions.push_back(float(v[k]));
+    std::vector<uint32_t> indices;
+    indices.reserve(3 * surface.triangles.size());
+    for (const Tri& t : surface.triangles) indices.insert(indices.end(), t.begin(), t.end());
+    std::vector<uint32_t> kept(indices.size());
+    // No error bound (1 = the whole extent): the count decides.
+    kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), positions.data(),
+                                 surface.vertices.size(), 3 * sizeof(float), 3 * max_triangles, 1.0f));
+    // A collapse can fold two triangles onto each other (the same three vertices, opposite
+    // sides): such a fin encloses nothing, and both go.
+    std::vector<std::array<uint32_t, 4>> sorted;  // the three vertices ascending, then the triangle
+    for (size_t i = 0; i + 2 < kept.size(); i += 3) {
+        std::array<uint32_t, 4> key = {kept[i], kept[i + 1], kept[i + 2], uint32_t(i / 3)};
+        std::sort(key.begin(), key.begin() + 3);
+        sorted.push_back(key);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<char> folded(kept.size() / 3, 0);
+    for (size_t i = 0; i < sorted.size();) {
+        size_t j = i + 1;
+        while (j < sorted.size() && std::equal(sorted[i].begin(), sorted[i].begin() + 3, sorted[j].begin())) ++j;
+        if (j - i > 1)
+            for (size_t k = i; k < j; ++k) folded[sorted[k][3]] = 1;
+        i = j;
+    }
+    TriangleMesh out;
+    std::vector<uint32_t> index(surface.vertices.size(), UINT32_MAX);
+    for (size_t i = 0; i + 2 < kept.size(); i += 3) {
+        if (folded[i / 3]) continue;
+        Tri t;
+        for (int k = 0; k < 3; ++k) {
+            uint32_t& at = index[kept[i + size_t(k)]];
+            if (at == UINT32_MAX) {
+                at = uint32_t(out.vertices.size());
+                out.vertices.push_back(surface.vertices[kept[i + size_t(k)]]);
+            }
+            t[size_t(k)] = at;
+        }
+        out.triangles.push_back(t);
+    }
+    return out;
+}
 
 RenderSurface flat_render_surface(const PieceSurface& surface) {
     RenderSurface out;

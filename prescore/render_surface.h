@@ -33,21 +33,32 @@ namespace shatter {
 // pays per triangle, in the shadow and the scene pass). The cut: each piece's cut corefines the
 // whole surface, so its work grows as pieces x surface triangles (measured ~2 us per triangle
 // and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
-// keep their tet surfaces. The simplification's own cost grows with the surface (not measured
-// apart; the demo's simplification and cut together take 1.1-1.2 s): a surface over
-// kRenderSurfaceSimplifyLimit is not cut either. The cut runs in a child process (core/isolated.h)
+// keep their tet surfaces. CGAL's simplification costs ~20 us per triangle removed (2 million
+// to 200,000 triangles: 41 s): a surface over kRenderSurfaceSimplifyLimit is first reduced to
+// kRenderSurfaceReduced by meshoptimizer's (1.3 s for those 2 million), whose folds and touching
+// sheets simplify_surface mends. The cut runs in a child process (core/isolated.h)
 // with a deadline of kRenderSurfaceSeconds plus the work's expected time: a crash inside CGAL or a
 // cut past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
 inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
 inline constexpr size_t kRenderSurfaceTriangles = 12000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
-inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are not simplified: none cut
+inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are first reduced (reduce_surface)
+inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many triangles
 
 // `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
-// (Lindstrom-Turk), deterministic. Returned as it is when already within, or when it is not a
-// closed polygon mesh.
+// (Lindstrom-Turk), deterministic. Sheets that touch along an edge or at a vertex get their own
+// copies of the shared vertices first; a result that crosses itself is repaired (CGAL's
+// remove_self_intersections). Returned as it is when already within, or when it is not a closed
+// polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
+
+// `surface` with at most about `max_triangles` triangles, by meshoptimizer's edge collapse
+// (quadric error, collapses that keep each vertex's kind: seconds for millions of triangles,
+// where CGAL's edge collapse takes minutes); the vertices it keeps, in their first use's order.
+// Fewer collapses are possible than asked (a collapse that would change the topology it can see
+// is not made). The first cut of a surface too large for simplify_surface.
+TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles);
 
 struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0

@@ -18,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup_extension.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
@@ -264,13 +265,27 @@ TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles)
     Soup soup;
     for (const Tri& t : surface.triangles) soup.push_back({t[0], t[1], t[2]});
     Mesh mesh;
-    if (!soup_to_mesh(points, soup, mesh) || !CGAL::is_triangle_mesh(mesh)) return surface;
+    if (!soup_to_mesh(points, soup, mesh)) {
+        // Sheets that touch along an edge or at a vertex (as a first reduction can leave them)
+        // are told apart by giving each its own copies of the shared vertices.
+        mesh.clear();
+        PMP::orient_polygon_soup(points, soup);
+        if (!soup_to_mesh(points, soup, mesh)) return surface;
+    }
+    if (!CGAL::is_triangle_mesh(mesh)) return surface;
     // Lindstrom-Turk cost and placement (the default), no collapse that turns a face over (fewer
     // self-intersections for the cut); a closed triangle mesh has 3/2 edges per face.
     namespace SMS = CGAL::Surface_mesh_simplification;
     SMS::Count_stop_predicate<Mesh> stop(max_triangles * 3 / 2);
     SMS::edge_collapse(mesh, stop, CGAL::parameters::filter(SMS::Bounded_normal_change_filter<>()));
     mesh.collect_garbage();
+    // The cut (a corefinement) needs a surface that does not cross itself: a surface reduced by
+    // meshoptimizer first can (CGAL's repair smooths or refills the faces that do; on a mesh
+    // without removed elements: with them it left crossings).
+    if (PMP::does_self_intersect(mesh)) {
+        PMP::experimental::remove_self_intersections(mesh);
+        mesh.collect_garbage();
+    }
     TriangleMesh out;
     out.vertices.reserve(mesh.number_of_vertices());
     for (auto v : mesh.vertices()) out.vertices.push_back(vec(mesh.point(v)));

@@ -10,6 +10,8 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config
   # prescore: mesh I/O, tetrahedralization, repair
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libassimp-dev
+  # prescore: simplifying very large surfaces for drawing
+  libmeshoptimizer-dev
   # simulate
   libbullet-dev libeigen3-dev
   # render

@@ -4,6 +4,7 @@
 // give the same surfaces. The tet surfaces miss both by far (the test says by how much).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -152,6 +153,65 @@ TEST(RenderSurface, PrescoreMakesNoneWhenTheSettingIsOff) {
     for (const Piece& p : m.pieces) EXPECT_FALSE(p.render);
     EXPECT_EQ(report.render_surfaces, 0u);
     EXPECT_NE(m.settings_json.find("\"render_surface\":false"), std::string::npos) << m.settings_json;
+}
+
+// A torus (ring radius R, tube radius r) of 2 nu nv triangles, outward.
+TriangleMesh torus(double R, double r, uint32_t nu, uint32_t nv) {
+    TriangleMesh m;
+    for (uint32_t i = 0; i < nu; ++i)
+        for (uint32_t j = 0; j < nv; ++j) {
+            const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+            m.vertices.push_back({(R + r * std::cos(v)) * std::cos(u), r * std::sin(v), (R + r * std::cos(v)) * std::sin(u)});
+        }
+    for (uint32_t i = 0; i < nu; ++i)
+        for (uint32_t j = 0; j < nv; ++j) {
+            const uint32_t a = i * nv + j, b = (i + 1) % nu * nv + j, c = (i + 1) % nu * nv + (j + 1) % nv,
+                           d = i * nv + (j + 1) % nv;
+            m.triangles.push_back({a, c, b});
+            m.triangles.push_back({a, d, c});
+        }
+    return m;
+}
+
+// Closed and 2-manifold by index: every directed edge once, and its opposite once.
+bool closed_by_index(const TriangleMesh& m) {
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (const Tri& t : m.triangles)
+        for (int k = 0; k < 3; ++k) edges[{t[k], t[(k + 1) % 3]}] += 1;
+    for (const auto& [edge, count] : edges) {
+        const auto back = edges.find({edge.second, edge.first});
+        if (count != 1 || back == edges.end() || back->second != 1) return false;
+    }
+    return !m.triangles.empty();
+}
+
+// A surface over kRenderSurfaceSimplifyLimit (a torus of 600,000 triangles, whose first reduction
+// folds triangle pairs, makes tubes touch along edges and crosses itself) is reduced by
+// meshoptimizer to about kRenderSurfaceReduced triangles of its own vertices, and CGAL's
+// simplification of that is closed, does not cross itself, is within kRenderSurfaceTriangles, on
+// the torus within 0.05% of its diagonal and encloses its volume 2 pi^2 R r^2 within 1%.
+TEST(RenderSurface, ASurfaceTooLargeForCgalIsReducedFirstAndStaysClosedOnTheTorus) {
+    const double R = 1, r = 0.35;
+    const TriangleMesh big = torus(R, r, 1000, 300);
+    ASSERT_GT(big.triangles.size(), kRenderSurfaceSimplifyLimit);
+    const auto off_torus = [&](const Vec3& p) { return std::abs(std::hypot(std::hypot(p.x(), p.z()) - R, p.y()) - r); };
+    const TriangleMesh reduced = reduce_surface(big, kRenderSurfaceReduced);
+    EXPECT_LE(reduced.triangles.size(), kRenderSurfaceReduced);
+    EXPECT_GT(reduced.triangles.size(), kRenderSurfaceReduced * 9 / 10);
+    for (const Vec3& v : reduced.vertices) ASSERT_LT(off_torus(v), 1e-12) << "a vertex not of the input";
+    const TriangleMesh cut = simplify_surface(reduced, kRenderSurfaceTriangles);
+    EXPECT_LE(cut.triangles.size(), kRenderSurfaceTriangles);
+    EXPECT_GT(cut.triangles.size(), kRenderSurfaceTriangles * 9 / 10);
+    EXPECT_TRUE(closed_by_index(cut));
+    EXPECT_EQ(count_self_intersections(cut), 0u) << "the cut needs a surface that does not cross itself";
+    double worst = 0, volume = 0;
+    for (const Vec3& v : cut.vertices) worst = std::max(worst, off_torus(v));
+    for (const Tri& t : cut.triangles)
+        volume += cut.vertices[t[0]].dot(cut.vertices[t[1]].cross(cut.vertices[t[2]])) / 6;
+    const double diagonal = std::sqrt(2 * std::pow(2 * (R + r), 2) + std::pow(2 * r, 2));
+    EXPECT_LT(worst, 0.0005 * diagonal);  // as the cut sphere's render surfaces (above)
+    EXPECT_NEAR(volume, 2 * M_PI * M_PI * R * r * r, 0.01 * 2 * M_PI * M_PI * R * r * r);
+    ::testing::Test::RecordProperty("worst_off_torus_of_r", std::to_string(worst / r));
 }
 
 TEST(RenderSurface, TwoRunsGiveTheSameSurfaces) {
