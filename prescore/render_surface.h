@@ -35,8 +35,8 @@ namespace shatter {
 // and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
 // keep their tet surfaces. CGAL's simplification costs ~20 us per triangle removed (2 million
 // to 200,000 triangles: 41 s): a surface over kRenderSurfaceSimplifyLimit is first reduced to
-// kRenderSurfaceReduced by meshoptimizer's (1.3 s for those 2 million), whose folds and touching
-// sheets simplify_surface mends. The cut runs in a child process (core/isolated.h)
+// kRenderSurfaceReduced by meshoptimizer's (1.3 s for those 2 million), whose touching sheets
+// and crossings simplify_surface mends. The cut runs in a child process (core/isolated.h)
 // with a deadline of kRenderSurfaceSeconds plus the work's expected time: a crash inside CGAL or a
 // cut past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
@@ -53,11 +53,13 @@ inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many tr
 // polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
 
-// `surface` with at most about `max_triangles` triangles, by meshoptimizer's edge collapse
-// (quadric error, collapses that keep each vertex's kind: seconds for millions of triangles,
-// where CGAL's edge collapse takes minutes); the vertices it keeps, in their first use's order.
-// Fewer collapses are possible than asked (a collapse that would change the topology it can see
-// is not made). The first cut of a surface too large for simplify_surface.
+// `surface` with at most `max_triangles` triangles, by meshoptimizer's edge collapse (quadric
+// error: seconds for millions of triangles, where CGAL's takes minutes); the vertices it keeps,
+// in their first use's order. It may stop short of the count (a vertex on a border or a seam is
+// not moved). It checks neither manifoldness nor crossings: triangles it folds onto each other
+// (two on the same three vertices) are dropped here; sheets it leaves touching along an edge and
+// triangles that cross are left to simplify_surface. The first cut of a surface too large for
+// simplify_surface.
 TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles);
 
 struct RenderSurfaceSettings {
