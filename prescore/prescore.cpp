@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -182,38 +183,52 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         from = &reduced;
     }
-    const TriangleMesh cut = simplify_surface(*from, kRenderSurfaceTriangles);
-    const double work = double(model.pieces.size()) * double(cut.triangles.size());
-    if (work > kRenderSurfaceWork) {
+    RenderSurfaceSettings rs;
+    rs.margin = kRenderSurfaceMargin * tet_size;
+    const auto over_budget = [&](size_t triangles) {
+        const double work = double(model.pieces.size()) * double(triangles);
+        if (!(work > kRenderSurfaceWork)) return false;
         report.choices.note(
             "render surfaces: none, the pieces keep their tet surfaces",
             fmt::format("{} pieces x {} surface triangles = {:.3g} million, over the budget of {:.3g} million (about "
                         "{:.0f} s); fewer pieces, or [prescore] render_surface = false to say so",
-                        model.pieces.size(), cut.triangles.size(), work / 1e6, kRenderSurfaceWork / 1e6,
-                        kRenderSurfaceWork * 2e-6));
-        return;
-    }
-    RenderSurfaceSettings rs;
-    rs.margin = kRenderSurfaceMargin * tet_size;
-    // CGAL's corefinement in a child process (core/isolated.h): a crash or a cut past its
-    // deadline leaves the pieces their tet surfaces instead of ending prescore. The child sends
-    // the model back with its render surfaces (the model format carries them).
+                        model.pieces.size(), triangles, work / 1e6, kRenderSurfaceWork / 1e6, kRenderSurfaceWork * 2e-6));
+        return true;
+    };
+    const size_t at_most = std::min(from->triangles.size(), kRenderSurfaceTriangles);
+    if (over_budget(at_most)) return;
+    // CGAL's simplification and corefinement in a child process (core/isolated.h): a crash or a
+    // cut past its deadline leaves the pieces their tet surfaces instead of ending prescore. The
+    // child sends back the simplified surface's triangle count (8 bytes) and, within the budget,
+    // the model with its render surfaces (the model format carries them).
     Model cut_model;
+    uint64_t cut_triangles = 0;
     try {
-        const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6;
+        // CGAL's simplification: ~20 us per triangle it removes (render_surface.h).
+        const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
+                                2e-5 * double(from->triangles.size() - at_most);
         const std::string bytes = run_isolated(
             [&] {
+                const TriangleMesh cut = simplify_surface(*from, kRenderSurfaceTriangles);
+                std::string out(sizeof(uint64_t), '\0');
+                const uint64_t n = cut.triangles.size();
+                std::memcpy(out.data(), &n, sizeof n);
+                if (double(model.pieces.size()) * double(n) > kRenderSurfaceWork) return out;
                 Model m = model;
                 std::vector<RenderSurface> found =
                     render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
-                return encode_model(m);
+                return out + encode_model(m);
             },
             deadline);
-        cut_model = decode_model(bytes, "render surfaces");
+        if (bytes.size() < sizeof cut_triangles) throw IsolatedFailure("no reply");
+        std::memcpy(&cut_triangles, bytes.data(), sizeof cut_triangles);
+        if (over_budget(cut_triangles)) return;
+        cut_model = decode_model(bytes.substr(sizeof cut_triangles), "render surfaces");
     } catch (const IsolatedFailure& f) {
         report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
-                            fmt::format("CGAL's corefinement {} ({}); [prescore] render_surface = false to say so",
+                            fmt::format("CGAL's simplification or corefinement {} ({}); [prescore] render_surface = "
+                                        "false to say so",
                                         f.timed_out ? "did not finish in time" : "crashed", f.what()));
         return;
     }
@@ -225,10 +240,10 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
         ++report.render_surfaces;
     }
     const std::string simplified =
-        cut.triangles.size() < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
+        cut_triangles < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
     spdlog::info("render surfaces: {} pieces cut from {} surface triangles{} (margin {:g} tet sizes, {:.4g} m) in "
                  "{:.2f} s: {} triangles, {} on their tet surface",
-                 report.render_surfaces, cut.triangles.size(), simplified, kRenderSurfaceMargin, rs.margin,
+                 report.render_surfaces, cut_triangles, simplified, kRenderSurfaceMargin, rs.margin,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  report.render_triangles, report.render_fell_back);
 }
