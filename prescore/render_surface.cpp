@@ -25,7 +25,8 @@ TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles) {
     kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), positions.data(),
                                  surface.vertices.size(), 3 * sizeof(float), 3 * max_triangles, 1.0f));
     // A collapse can fold two triangles onto each other (the same three vertices, opposite
-    // sides): such a fin encloses nothing, and both go.
+    // sides): such a fin encloses nothing, and both go. Of triangles on the same three vertices
+    // one is kept when more face one way than the other.
     std::vector<std::array<uint32_t, 4>> sorted;  // the three vertices ascending, then the triangle
     for (size_t i = 0; i + 2 < kept.size(); i += 3) {
         std::array<uint32_t, 4> key = {kept[i], kept[i + 1], kept[i + 2], uint32_t(i / 3)};
@@ -33,12 +34,27 @@ TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles) {
         sorted.push_back(key);
     }
     std::sort(sorted.begin(), sorted.end());
+    // A triangle's vertices in an even permutation of ascending order face one way, odd the other.
+    const auto even = [&](uint32_t t) {
+        const uint32_t a = kept[3 * size_t(t)], b = kept[3 * size_t(t) + 1], c = kept[3 * size_t(t) + 2];
+        return (a < b) + (b < c) + (c < a) == 2;
+    };
     std::vector<char> folded(kept.size() / 3, 0);
     for (size_t i = 0; i < sorted.size();) {
         size_t j = i + 1;
         while (j < sorted.size() && std::equal(sorted[i].begin(), sorted[i].begin() + 3, sorted[j].begin())) ++j;
-        if (j - i > 1)
-            for (size_t k = i; k < j; ++k) folded[sorted[k][3]] = 1;
+        if (j - i > 1) {
+            int balance = 0;  // even minus odd
+            for (size_t k = i; k < j; ++k) {
+                folded[sorted[k][3]] = 1;
+                balance += even(sorted[k][3]) ? 1 : -1;
+            }
+            for (size_t k = i; k < j && balance != 0; ++k)
+                if (even(sorted[k][3]) == (balance > 0)) {
+                    folded[sorted[k][3]] = 0;  // the first of the way more face
+                    break;
+                }
+        }
         i = j;
     }
     TriangleMesh out;

@@ -20,6 +20,8 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
@@ -267,10 +269,19 @@ TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles)
     Mesh mesh;
     if (!soup_to_mesh(points, soup, mesh)) {
         // Sheets that touch along an edge or at a vertex (as a first reduction can leave them)
-        // are told apart by giving each its own copies of the shared vertices.
+        // are told apart by giving each its own copies of the shared vertices; where an odd
+        // number of triangles met at an edge, the border that leaves is closed with a patch.
         mesh.clear();
         PMP::orient_polygon_soup(points, soup);
-        if (!soup_to_mesh(points, soup, mesh)) return surface;
+        if (!PMP::is_polygon_soup_a_polygon_mesh(soup)) return surface;
+        PMP::polygon_soup_to_polygon_mesh(points, soup, mesh);
+        std::vector<Mesh::Halfedge_index> borders;
+        PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
+        for (Mesh::Halfedge_index h : borders) {
+            std::vector<Mesh::Face_index> patch;
+            PMP::triangulate_hole(mesh, h, std::back_inserter(patch));
+        }
+        if (!CGAL::is_closed(mesh)) return surface;
     }
     if (!CGAL::is_triangle_mesh(mesh)) return surface;
     // Lindstrom-Turk cost and placement (the default), no collapse that turns a face over (fewer
