@@ -49,8 +49,8 @@ inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many tr
 
 // `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
 // (Lindstrom-Turk), deterministic. Sheets that touch along an edge or at a vertex get their own
-// copies of the shared vertices first; a result that crosses itself is repaired (CGAL's
-// remove_self_intersections). Returned as it is when already within, or when it is not a closed
+// copies of the shared vertices first (a border that leaves is closed with a patch); a result
+// that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when already within, or when it is not a closed
 // polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
 
