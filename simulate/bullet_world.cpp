@@ -1063,11 +1063,15 @@ Vec3 BulletWorld::centre_velocity(const std::vector<uint32_t>& pieces) const {
 
 namespace {
 
-double body_kinetic_energy(const btRigidBody& b, const Vec3& frame = Vec3::Zero()) {
+// In a frame moving at `frame`, `inertia` the body's inertia tensor in the world frame.
+double body_kinetic_energy(const btRigidBody& b, const Mat3& inertia, const Vec3& frame = Vec3::Zero()) {
     const Vec3 v = to_eigen(b.getLinearVelocity()) - frame, w = to_eigen(b.getAngularVelocity());
-    const Mat3 inv_i = to_eigen(b.getInvInertiaTensorWorld());
-    return 0.5 * v.squaredNorm() / b.getInvMass() + 0.5 * w.dot(inv_i.inverse() * w);
+    return 0.5 * v.squaredNorm() / b.getInvMass() + 0.5 * w.dot(inertia * w);
 }
+
+Mat3 inertia_tensor(const btRigidBody& b) { return to_eigen(b.getInvInertiaTensorWorld()).inverse(); }
+
+double body_kinetic_energy(const btRigidBody& b) { return body_kinetic_energy(b, inertia_tensor(b)); }
 
 }  // namespace
 
@@ -1087,12 +1091,10 @@ void BulletWorld::kinetic_energies_of(const std::vector<uint32_t>& pieces, const
     for (uint32_t p : pieces) {
         if (!impl_->pieces[p].dynamic) continue;
         const btRigidBody& b = *impl_->pieces[p].body;
-        if (!known) inertia->push_back(to_eigen(b.getInvInertiaTensorWorld()).inverse());
-        const Vec3 v = to_eigen(b.getLinearVelocity()), w = to_eigen(b.getAngularVelocity());
-        const double turn = 0.5 * w.dot((*inertia)[k++] * w);
-        const Vec3 relative = v - frame;
-        e += 0.5 * relative.squaredNorm() / b.getInvMass() + turn;
-        e_world += 0.5 * v.squaredNorm() / b.getInvMass() + turn;
+        if (!known) inertia->push_back(inertia_tensor(b));
+        const Mat3& tensor = (*inertia)[k++];
+        e += body_kinetic_energy(b, tensor, frame);
+        e_world += body_kinetic_energy(b, tensor);
     }
     *in_frame = e;
     *in_world = e_world;
