@@ -173,18 +173,6 @@ TriangleMesh torus(double R, double r, uint32_t nu, uint32_t nv) {
     return m;
 }
 
-// Closed and 2-manifold by index: every directed edge once, and its opposite once.
-bool closed_by_index(const TriangleMesh& m) {
-    std::map<std::pair<uint32_t, uint32_t>, int> edges;
-    for (const Tri& t : m.triangles)
-        for (int k = 0; k < 3; ++k) edges[{t[k], t[(k + 1) % 3]}] += 1;
-    for (const auto& [edge, count] : edges) {
-        const auto back = edges.find({edge.second, edge.first});
-        if (count != 1 || back == edges.end() || back->second != 1) return false;
-    }
-    return !m.triangles.empty();
-}
-
 // A surface over kRenderSurfaceSimplifyLimit (a torus of 600,000 triangles, whose first reduction
 // folds triangle pairs, makes tubes touch along edges and crosses itself) is reduced by
 // meshoptimizer to about kRenderSurfaceReduced triangles of its own vertices, and CGAL's
@@ -202,12 +190,12 @@ TEST(RenderSurface, ASurfaceTooLargeForCgalIsReducedFirstAndStaysClosedOnTheToru
     const TriangleMesh cut = simplify_surface(reduced, kRenderSurfaceTriangles);
     EXPECT_LE(cut.triangles.size(), kRenderSurfaceTriangles);
     EXPECT_GT(cut.triangles.size(), kRenderSurfaceTriangles * 9 / 10);
-    EXPECT_TRUE(closed_by_index(cut));
-    EXPECT_EQ(count_self_intersections(cut), 0u) << "the cut needs a surface that does not cross itself";
-    double worst = 0, volume = 0;
+    const MeshCheck check = check_mesh(cut);
+    EXPECT_TRUE(check.closed() && check.manifold() && check.oriented()) << describe(check);
+    EXPECT_EQ(check.self_intersections, 0u) << "the cut needs a surface that does not cross itself";
+    double worst = 0;
     for (const Vec3& v : cut.vertices) worst = std::max(worst, off_torus(v));
-    for (const Tri& t : cut.triangles)
-        volume += cut.vertices[t[0]].dot(cut.vertices[t[1]].cross(cut.vertices[t[2]])) / 6;
+    const double volume = check.volume;
     const double diagonal = std::sqrt(2 * std::pow(2 * (R + r), 2) + std::pow(2 * r, 2));
     EXPECT_LT(worst, 0.0005 * diagonal);  // as the cut sphere's render surfaces (above)
     EXPECT_NEAR(volume, 2 * M_PI * M_PI * R * r * r, 0.01 * 2 * M_PI * M_PI * R * r * r);
