@@ -77,8 +77,16 @@ struct BulletWorld::Impl {
     std::vector<btRigidBody*> props;        // the kinematic bodies, then the projectiles
     std::vector<btRigidBody*> projectiles;  // dynamic: in the books beside the pieces
     std::vector<Joint> joints;
-    std::vector<std::vector<uint32_t>> joints_of_piece;  // the joints with a constraint at each piece
+    // Each piece's active joints, in the order they were added (a break takes its joint out of
+    // both lists, keeping the order): joined_pieces walks these, never the broken joints.
+    struct Link {
+        uint32_t joint;
+        uint32_t other;  // the piece at the joint's other end
+        bool is_a;       // the piece holding the list is the joint's piece_a
+    };
+    std::vector<std::vector<Link>> links;
     mutable std::vector<uint32_t> joined_index;  // joined_bodies' scratch: per piece, UINT32_MAX between calls
+    mutable std::vector<int8_t> joined_side;     // joined_pieces' scratch: per piece, -1 between calls
     // Each joint's pivot (the mean of where its two pieces place it) as of pose count pivot_at[j]:
     // the breaks of one step read the pivots of the same joined pieces again and again (a
     // 1,000-piece bunny's impact breaks hundreds of joints in a step, each kick solved through up
@@ -264,10 +272,8 @@ void BulletWorld::allow_sleep(const Model& model) {
     for (size_t i = 0; i < m.pieces.size(); ++i)
         if (!m.pieces[i].dynamic) kept[i] = 1, queue.push_back(uint32_t(i));
     for (size_t next = 0; next < queue.size(); ++next)
-        for (uint32_t j : m.joints_of_piece[queue[next]]) {
-            const uint32_t q = m.joints[j].piece_a == queue[next] ? m.joints[j].piece_b : m.joints[j].piece_a;
-            if (!kept[q]) kept[q] = 1, queue.push_back(q);
-        }
+        for (const Impl::Link& l : m.links[queue[next]])
+            if (!kept[l.other]) kept[l.other] = 1, queue.push_back(l.other);
     const btScalar v = btScalar(setup_.sleep_speed);
     for (size_t i = 0; i < m.pieces.size(); ++i) {
         Impl::PieceBody& p = m.pieces[i];
@@ -543,7 +549,7 @@ void BulletWorld::build_joints(const Model& model) {
     m.joints.resize(model.constraints.size());
     m.pivot.assign(model.constraints.size(), Vec3::Zero());
     m.pivot_at.assign(model.constraints.size(), 0);
-    m.joints_of_piece.assign(m.pieces.size(), {});
+    m.links.assign(m.pieces.size(), {});
     for (size_t i = 0; i < model.constraints.size(); ++i) {
         const Constraint& c = model.constraints[i];
         Impl::Joint& j = m.joints[i];
@@ -564,8 +570,8 @@ void BulletWorld::build_joints(const Model& model) {
         if (setup_.bullet_breaking) j.constraint->setBreakingImpulseThreshold(btScalar(j.strength * setup_.h));
         m.world.addConstraint(j.constraint.get(), true);
         j.active = true;
-        m.joints_of_piece[c.piece_a].push_back(uint32_t(i));
-        m.joints_of_piece[c.piece_b].push_back(uint32_t(i));
+        m.links[c.piece_a].push_back({uint32_t(i), c.piece_b, true});
+        m.links[c.piece_b].push_back({uint32_t(i), c.piece_a, false});
     }
 }
 
@@ -918,6 +924,10 @@ void BulletWorld::remove_constraint(size_t c) {
     m.residual_known = false;
     m.world.removeConstraint(j.constraint.get());
     j.active = false;
+    for (const uint32_t p : {j.piece_a, j.piece_b}) {
+        std::vector<Impl::Link>& l = m.links[p];
+        l.erase(std::find_if(l.begin(), l.end(), [c](const Impl::Link& x) { return x.joint == c; }));
+    }
     // Joined pieces never collide, so a pair whose last joint breaks may overlap by then: partly
     // broken, its remaining joints a hinge, it can turn into itself (up to simulate.h
     // kOverlapBreak of the smaller piece's radius, where the joints left break; before that rule,
@@ -981,35 +991,45 @@ void BulletWorld::joined_pieces(size_t c, size_t limit, JoinedPieces* out) const
     const Impl& m = *impl_;
     const uint32_t start[2] = {m.joints[c].piece_a, m.joints[c].piece_b};
     *out = JoinedPieces{};
-    std::vector<int8_t> side(m.pieces.size(), -1);
-    for (int s = 0; s < 2; ++s) {
+    std::vector<int8_t>& side = m.joined_side;
+    side.resize(m.pieces.size(), -1);
+    // Every joint is met from both its pieces once the search has reached both: kept from its piece_a.
+    size_t joints_a = 0;  // of them, piece_a's side's (when parted)
+    for (int s = 0; s < 2 && !out->held; ++s) {
         if (side[start[s]] >= 0) break;  // piece_b was reached from piece_a: not parted
         if (s == 1) {
             out->parted = true;
             out->side_b = out->pieces.size();
+            joints_a = out->joints.size();
         }
         side[start[s]] = int8_t(s);
         out->pieces.push_back(start[s]);
         for (size_t next = out->pieces.size() - 1; next < out->pieces.size(); ++next) {
-            const uint32_t p = out->pieces[next];
-            for (uint32_t j : m.joints_of_piece[p]) {
-                if (!m.joints[j].active) continue;
-                const uint32_t q = m.joints[j].piece_a == p ? m.joints[j].piece_b : m.joints[j].piece_a;
-                if (side[q] >= 0) continue;
-                side[q] = int8_t(s);
-                out->pieces.push_back(q);
+            for (const Impl::Link& l : m.links[out->pieces[next]]) {
+                if (l.is_a) out->joints.push_back(l.joint);
+                if (side[l.other] >= 0) continue;
+                side[l.other] = int8_t(s);
+                out->pieces.push_back(l.other);
             }
             // Past the limit with piece_b already reached: a break inside a large body.
             if (s == 0 && out->pieces.size() > limit && side[start[1]] == 0) {
                 out->held = true;
-                return;
+                break;
             }
         }
     }
+    for (uint32_t p : out->pieces) side[p] = -1;
+    if (out->held) {
+        out->joints.clear();
+        return;
+    }
     if (!out->parted) out->side_b = out->pieces.size();
-    for (uint32_t p : out->pieces)
-        for (uint32_t j : m.joints_of_piece[p])
-            if (m.joints[j].active && m.joints[j].piece_a == p) out->joints.push_back(j);
+    // Two sides apart, of which one is past the limit: that one moves as one rigid body
+    // (breaking.h), so only the other's joints are wanted. Each side's joints were met together.
+    if (out->parted && out->pieces.size() > limit) {
+        if (out->side_b > limit) out->joints.erase(out->joints.begin(), out->joints.begin() + std::ptrdiff_t(joints_a));
+        if (out->pieces.size() - out->side_b > limit) out->joints.resize(out->side_b > limit ? 0 : joints_a);
+    }
     std::sort(out->joints.begin(), out->joints.end());
 }
 

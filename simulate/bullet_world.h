@@ -189,11 +189,13 @@ public:
     // joints among them. `parted`: the two pieces are no longer joined (side 1 holds piece_b's).
     struct JoinedPieces {
         std::vector<uint32_t> pieces;  // piece_a's side first, each side in the order reached
-        std::vector<uint32_t> joints;  // ascending
+        // Ascending. Parted with more than `limit` pieces in all: only those of a side within the
+        // limit (a larger side moves as one rigid body).
+        std::vector<uint32_t> joints;
         size_t side_b = 0;             // pieces[side_b..] are piece_b's side (none when not parted)
         bool parted = false;
-        // Not parted, and more than `limit` pieces joined: the search stopped there (pieces and
-        // joints incomplete).
+        // Not parted, and more than `limit` pieces joined: the search stopped there (pieces
+        // incomplete, no joints).
         bool held = false;
     };
     void joined_pieces(size_t c, size_t limit, JoinedPieces* out) const;

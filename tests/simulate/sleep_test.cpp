@@ -128,8 +128,11 @@ TEST(Sleep, PiecesJoinedToADrivenPieceStayAwake) {
     BulletWorld world(model, setup);
     while (world.time() < 1.0) world.step();
     EXPECT_EQ(world.sleeping_pieces(), 0u);
-    for (size_t c = 0; c < world.constraint_count(); ++c)
-        if (world.active(c)) EXPECT_TRUE(world.awake(c));
+    for (size_t c = 0; c < world.constraint_count(); ++c) {
+        if (world.active(c)) {
+            EXPECT_TRUE(world.awake(c));
+        }
+    }
 }
 
 // The automatic step (substeps = "auto"): a porcelain bar of five 2 cm cubes lying across two
