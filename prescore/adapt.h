@@ -10,7 +10,9 @@
 //   thicken     when that does not reach the thin parts (or the tets fill less than half: thin
 //               everywhere), the input is alpha-wrapped with an offset of kThickenOffset tets at
 //               twice the asked resolution, which gives every wall a thickness of about 1.5 tets
-//               (an open sheet becomes a slab, a double-sided wrap of a thin wall one solid);
+//               (an open or flat sheet becomes a slab, a double-sided wrap of a thin wall one
+//               solid); thicker and coarser, twice at most, when that meshing exceeds the budget
+//               or makes no tets;
 //   repair      a surface whose meshing does not end within the vertex budget and kMeshSeconds
 //               (heavy self-intersections) is alpha-wrapped first;
 //   slivers     tet clusters smaller than kSliverFraction of the volume are not pieces of their

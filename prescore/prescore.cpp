@@ -63,20 +63,32 @@ void refuse_out_of_scale(double diagonal, const std::string& path) {
                       "set the mesh's size (--size or [mesh] size, the longest side in metres) or its scale");
 }
 
-// A mesh with no volume (all points in a plane, or a closed surface that encloses nothing) has
-// nothing inside to fracture; alpha wrapping would only turn it into a sheet of the offset's
-// thickness, so it is refused rather than repaired.
-void refuse_flat(const MeshCheck& c, const std::string& path) {
+// A mesh whose triangles are all degenerate (its points on a line or at one point) has no surface
+// to give a thickness to.
+void refuse_without_area(const MeshCheck& c, const std::string& path) {
+    const double d = c.diagonal;
+    if (d > 0 && c.area <= 1e-12 * d * d) {
+        const Vec3 extent = c.bbox_max - c.bbox_min;
+        throw_input_error(path,
+                          fmt::format("the mesh has no area: every triangle is degenerate (bounding box {:.4g} x {:.4g} x "
+                                      "{:.4g} m)", extent.x(), extent.y(), extent.z()),
+                          "give a mesh with a surface: a solid, or a sheet (which is given a thickness)");
+    }
+}
+
+// A sheet: all points in a plane, or a closed surface that encloses nothing (a plane's two sides).
+// Mesh_3 finds no inside; the repair wraps it (a sheet of twice the offset), and adapt then gives
+// the walls a thickness the tets resolve (prescore/adapt.h), as it does for any thin wall.
+bool is_sheet(const MeshCheck& c, std::string* why) {
     const Vec3 extent = c.bbox_max - c.bbox_min;
     const double d = c.diagonal;
     const bool flat = extent.minCoeff() <= 1e-6 * d;
     const bool empty_inside = c.closed() && std::abs(c.volume) <= 1e-9 * d * d * d;
-    const bool no_area = c.area <= 1e-12 * d * d;  // every triangle degenerate (a line's worth of points)
-    if (d > 0 && (flat || empty_inside || no_area))
-        throw_input_error(path,
-                          fmt::format("the mesh is flat: it encloses no volume (bounding box {:.4g} x {:.4g} x {:.4g} m, "
-                                      "volume {:.4g} m^3)", extent.x(), extent.y(), extent.z(), c.volume),
-                          "give a solid mesh; prescore fractures volumes, not sheets");
+    if (!flat && !empty_inside) return false;
+    *why = fmt::format("the mesh is a sheet: {} (bounding box {:.4g} x {:.4g} x {:.4g} m, volume {:.4g} m^3); repair it "
+                       "with alpha wrapping, which gives it a thickness",
+                       flat ? "flat" : "it encloses no volume", extent.x(), extent.y(), extent.z(), c.volume);
+    return true;
 }
 
 // Self-intersecting pairs a mesh may have and still go to Mesh_3 as it is: 1% of its triangles.
@@ -88,10 +100,10 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     report.input = check_mesh(mesh);
     spdlog::info("mesh: {}", describe(report.input));
     refuse_out_of_scale(report.input.diagonal, settings.path);
-    refuse_flat(report.input, settings.path);
+    refuse_without_area(report.input, settings.path);
     if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
     std::string why;
-    bool usable = can_tetrahedralize(check_mesh(mesh, false), &why);
+    bool usable = !is_sheet(report.input, &why) && can_tetrahedralize(check_mesh(mesh, false), &why);
     if (usable && settings.repair != RepairMode::Never &&
         report.input.self_intersections > max_self_intersections(report.input)) {
         // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many

@@ -7,6 +7,11 @@
 // optimisation passes (no Lloyd, ODT, perturb or exude: the default perturb/exude changed the
 // tet count from run to run). The same mesh and settings give byte-identical output.
 //
+// Mesh_3 starts from points where rays shot from the centre of the surface's bounding box meet
+// it. When those give it no facet to start from (a thin flat wall whose box's centre lies outside
+// it: a frame around a hole, a concave plate, once given a thickness), it runs once more from
+// points taken on up to 64 of the surface's faces, spread over it.
+//
 // The sizes are Mesh_3's: cell_size bounds each tet's circumradius, facet_size bounds the radius
 // of each boundary facet's surface Delaunay ball, facet_distance bounds the distance between a
 // boundary facet's circumcentre and the input surface.

@@ -10,9 +10,12 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/make_mesh_3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
+
+#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "prescore/sharp_features.h"
@@ -96,6 +99,50 @@ TetMesh to_tet_mesh(const C3t3& c3t3) {
     return out;
 }
 
+void log_cgal_warning(const char*, const char* expression, const char* file, int line, const char* message) {
+    spdlog::debug("tetrahedralize: CGAL warning at {}:{} ({}): {}", file, line, expression, message ? message : "");
+}
+
+// The domain with its first surface points taken on the surface itself instead of on rays shot
+// from the centre of its bounding box. Those rays must hit the surface, and on a thin flat wall
+// whose box's centre lies outside it (a frame around a hole, a concave plate) few do, too close
+// together: Mesh_3 then finds no facet to start from and makes nothing ("the mesh refinement
+// process can't start"). Here a short segment across each of up to kSeeds faces, spread over the
+// surface, gives the point and its surface index as the domain's own intersection does.
+class SeededDomain : public Domain {
+public:
+    SeededDomain(const Surface& surface, double across) : Domain(surface) {
+        const size_t faces = surface.number_of_faces();
+        const size_t step = std::max<size_t>(1, faces / kSeeds);
+        const auto intersect = construct_intersection_object();
+        for (size_t f = 0; f < faces; f += step) {
+            const auto h = surface.halfedge(Surface::Face_index(uint32_t(f)));
+            const Point& a = surface.point(surface.source(h));
+            const Point& b = surface.point(surface.target(h));
+            const Point& c = surface.point(surface.target(surface.next(h)));
+            const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
+            const double length = std::sqrt(CGAL::to_double(n.squared_length()));
+            if (!(length > 0)) continue;
+            const Point centre = CGAL::centroid(a, b, c);
+            const Kernel::Vector_3 d = n * (across / length);
+            const Intersection hit = intersect(Kernel::Segment_3(centre - d, centre + d));
+            if (std::get<2>(hit) != 0) seeds_.emplace_back(std::get<0>(hit), std::get<1>(hit));
+        }
+    }
+    struct Construct_initial_points {
+        const SeededDomain& domain;
+        template <class OutputIterator>
+        OutputIterator operator()(OutputIterator points, int = 0) const {
+            return std::copy(domain.seeds_.begin(), domain.seeds_.end(), points);
+        }
+    };
+    Construct_initial_points construct_initial_points_object() const { return {*this}; }
+
+private:
+    static constexpr size_t kSeeds = 64;
+    std::vector<std::pair<Point, Index>> seeds_;
+};
+
 }  // namespace
 
 TetrahedralizeSettings tetrahedralize_settings_for(double diagonal, double resolution) {
@@ -113,7 +160,6 @@ TetrahedralizeSettings tetrahedralize_settings_for(double diagonal, double resol
 TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSettings& settings) {
     check_settings(settings);
     const Surface surface = to_surface(closed_mesh);
-    Domain domain(surface);  // its random generator is CGAL::Random(0): deterministic
     // Only creases at least as long as a tet and as feature_min_length are protected
     // (prescore/sharp_features.h).
     const double min_length = std::max(settings.cell_size, settings.feature_min_length);
@@ -124,7 +170,6 @@ TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSett
         features.emplace_back();
         for (const Vec3& p : line) features.back().emplace_back(p.x(), p.y(), p.z());
     }
-    domain.add_features(features.begin(), features.end());
 
     namespace params = CGAL::parameters;
     const Criteria criteria(params::edge_size = settings.cell_size, params::facet_angle = settings.facet_angle,
@@ -136,18 +181,30 @@ TetMesh tetrahedralize(const TriangleMesh& closed_mesh, const TetrahedralizeSett
     CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
     options.maximal_number_of_vertices = settings.max_vertices;
     options.pointer_to_error_code = &error;
-    const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
-                                              params::no_lloyd(), params::no_odt(),
-                                              options);
-    if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
-        std::ostringstream s;
-        s << "Mesh_3 reached its budget of " << settings.max_vertices << " vertices at cell size "
-          << settings.cell_size << " m before the surface was followed";
-        throw TetBudgetReached(ExitCode::BadInput, "tetrahedralize: " + s.str() +
-                                                       " (fix: lower the resolution, or repair the mesh with "
-                                                       "--repair always)");
+    const auto mesh = [&](auto& domain) {
+        domain.add_features(features.begin(), features.end());
+        // CGAL's warnings (a refinement that cannot start) go to the debug log: what follows from
+        // them is this function's to report.
+        const CGAL::Failure_function warn = CGAL::set_warning_handler(&log_cgal_warning);
+        const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude(),
+                                                  params::no_lloyd(), params::no_odt(), options);
+        CGAL::set_warning_handler(warn);
+        if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED) {
+            std::ostringstream s;
+            s << "Mesh_3 reached its budget of " << settings.max_vertices << " vertices at cell size "
+              << settings.cell_size << " m before the surface was followed";
+            throw TetBudgetReached(ExitCode::BadInput, "tetrahedralize: " + s.str() +
+                                                           " (fix: lower the resolution, or repair the mesh with "
+                                                           "--repair always)");
+        }
+        return to_tet_mesh(c3t3);
+    };
+    Domain domain(surface);  // its random generator is CGAL::Random(0): deterministic
+    TetMesh out = mesh(domain);
+    if (out.tets.empty()) {  // no start from the rays: once more from points on the surface
+        SeededDomain seeded(surface, settings.facet_distance);
+        out = mesh(seeded);
     }
-    TetMesh out = to_tet_mesh(c3t3);
     if (out.tets.empty()) {
         std::ostringstream s;
         s << "Mesh_3 made no tets at cell size " << settings.cell_size

@@ -11,7 +11,7 @@ glmark2-data's models and assimp-testmodels (every file whose extension assimp r
 
 Each mesh runs as `shatter prescore MESH -o WORKDIR/NAME.model` with a time limit. A mesh passes
 when it pre-scores (exit 0) or is refused with exit code 3 for a reason that makes it no solid
-mesh (empty, flat, no triangles, unreadable); a crash (any other exit code) or a run past the
+mesh (empty, no area, no triangles, unreadable); a crash (any other exit code) or a run past the
 limit fails. --sample also checks each file's expected exit code and message. Prints one line per
 mesh and a summary; exits 1 when a mesh failed.
 
@@ -44,7 +44,7 @@ ASSIMP_EXTENSIONS = set(
     "stl stp ter uc x x3d x3db xgl zae zgl".split())
 # Refusals that say the file holds no solid mesh (or none a reader can read): not counted
 # against the pass rate, but each must come with exit code 3 and its message.
-NOT_SOLID = re.compile(r"no triangles|is flat|is empty|cannot read mesh|corrupt mesh|crashed on this file|"
+NOT_SOLID = re.compile(r"no triangles|no area|is empty|cannot read mesh|corrupt mesh|crashed on this file|"
                        r"did not finish within|PLY header|non-finite coordinate|outside 1e-09")
 
 
@@ -154,7 +154,7 @@ def write_table(results, path, workdir):
         "Every mesh Debian ships in CGAL's data set (libcgal-demo), glmark2-data and assimp-testmodels (each file "
         "whose extension assimp reads), pre-scored with the defaults: `make corpus` "
         "(scripts/corpus.py; a fixed sample runs in `make test`). A file passes when it pre-scores, or is refused "
-        "with exit code 3 for a reason that makes it no solid mesh (empty, flat, no triangles, unreadable); a "
+        "with exit code 3 for a reason that makes it no solid mesh (empty, no area, no triangles, unreadable); a "
         "crash, a refused solid mesh or a run that does not end by itself (killed after %d s) fails. The target "
         "for one prescore is %d s." % (KILL_SECONDS, LIMIT_SECONDS),
         "",
