@@ -58,6 +58,23 @@ void add_tet_block(TetMesh& m, const Vec3& lo, double h, int n) {
         for (uint32_t& v : t) v = first[v];
 }
 
+double tets_volume(const TetMesh& m) {
+    double volume = 0;
+    for (const Tet& t : m.tets)
+        volume += tet_volume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    return volume;
+}
+
+// prescore with the defaults on a mesh file written from `text`.
+Model prescore_text(const std::string& name, const std::string& text, PrescoreReport* report,
+                    RepairMode repair = RepairMode::Auto) {
+    testing_support::TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write(name, text);
+    mesh.repair = repair;
+    return prescore(mesh, PrescoreSettings{}, report);
+}
+
 TEST(Adapt, SizeWinsOverScaleWhichWinsOverTheFileUnitsAndAUnitlessFileIsMadeThreeTenthsOfAMetreLong) {
     const TriangleMesh m = box(Vec3(0, 0, 0), Vec3(4, 2, 1));  // longest side 4 units
     MeshSettings s;
@@ -91,10 +108,7 @@ TEST(Adapt, APlateThinnerThanATetIsFittedAsOneBodyAndRefusedWithoutAdapt) {
     int32_t clusters = 0;
     tet_components(build_topology(fit.tets), {}, &clusters);
     EXPECT_EQ(clusters, 1);
-    double volume = 0;
-    for (const Tet& t : fit.tets.tets)
-        volume += tet_volume(fit.tets.vertices[t[0]], fit.tets.vertices[t[1]], fit.tets.vertices[t[2]],
-                             fit.tets.vertices[t[3]]);
+    const double volume = tets_volume(fit.tets);
     const double offset = fit.wrapped ? kThickenOffset * check.diagonal / fit.resolution : 0;
     EXPECT_GE(volume, 0.9 * 0.01);
     EXPECT_LE(volume, (1 + 2 * offset) * (0.01 + 2 * offset) * (1 + 2 * offset) * 1.05);
@@ -118,28 +132,21 @@ TEST(Adapt, APlateThinnerThanATetIsFittedAsOneBodyAndRefusedWithoutAdapt) {
 // 2 d A + P pi d^2 / 2 + 4 pi d^3 / 3 (A the area, P the perimeter; measured 3.1% under it, the tets
 // inside the wrap). Without repair it is refused.
 TEST(Adapt, AFlatSheetIsGivenAThicknessAndRefusedWithoutRepair) {
-    testing_support::TempDir dir;
-    MeshSettings mesh;
-    mesh.path = dir.write("square.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
-    PrescoreSettings ps;
+    const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
     PrescoreReport report;
-    const Model model = prescore(mesh, ps, &report);
-    EXPECT_EQ(model.pieces.size(), ps.pieces);
+    const Model model = prescore_text("square.obj", square, &report);
+    EXPECT_EQ(model.pieces.size(), PrescoreSettings{}.pieces);
     EXPECT_FALSE(model.constraints.empty());
     int32_t clusters = 0;
     tet_components(build_topology(model.mesh), {}, &clusters);
     EXPECT_EQ(clusters, 1);
-    double volume = 0;
-    for (const Tet& t : model.mesh.tets)
-        volume += tet_volume(model.mesh.vertices[t[0]], model.mesh.vertices[t[1]], model.mesh.vertices[t[2]],
-                             model.mesh.vertices[t[3]]);
     const double side = kDefaultSize, d = kThickenOffset * std::sqrt(2.0) * side / report.resolution;
     const double grown = 2 * d * side * side + 4 * side * M_PI * d * d / 2 + 4 * M_PI * d * d * d / 3;
-    EXPECT_NEAR(volume, grown, 0.05 * grown) << "offset " << d << " m at resolution " << report.resolution;
+    EXPECT_NEAR(tets_volume(model.mesh), grown, 0.05 * grown)
+        << "offset " << d << " m at resolution " << report.resolution;
 
-    mesh.repair = RepairMode::Never;
     try {
-        prescore(mesh, ps, nullptr);
+        prescore_text("square.obj", square, nullptr, RepairMode::Never);
         ADD_FAILURE() << "a sheet was accepted without repair";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ExitCode::BadInput);
@@ -154,25 +161,18 @@ TEST(Adapt, AFlatSheetIsGivenAThicknessAndRefusedWithoutRepair) {
 // tets fill the frame grown by the offset (2 d A + P pi d^2 / 2 for a region with one hole; the
 // rims at the hole's corners overlap, so within 10%).
 TEST(Adapt, AFlatFrameAroundAHoleIsMeshedAtItsFirstThickening) {
-    testing_support::TempDir dir;
-    MeshSettings mesh;
-    mesh.path = dir.write("frame.off",
-                          "OFF\n6 6 0\n1 1 0\n3 1 0\n2 2 0\n2 3 0\n0 0 0\n4 0 0\n"
-                          "3 0 2 3\n3 1 3 2\n3 0 4 1\n3 1 4 5\n3 1 5 3\n3 0 3 4\n");
-    PrescoreSettings ps;
     PrescoreReport report;
-    const Model model = prescore(mesh, ps, &report);
-    EXPECT_DOUBLE_EQ(report.resolution, 2 * ps.resolution);
-    double volume = 0;
-    for (const Tet& t : model.mesh.tets)
-        volume += tet_volume(model.mesh.vertices[t[0]], model.mesh.vertices[t[1]], model.mesh.vertices[t[2]],
-                             model.mesh.vertices[t[3]]);
+    const Model model = prescore_text("frame.off",
+                                      "OFF\n6 6 0\n1 1 0\n3 1 0\n2 2 0\n2 3 0\n0 0 0\n4 0 0\n"
+                                      "3 0 2 3\n3 1 3 2\n3 0 4 1\n3 1 4 5\n3 1 5 3\n3 0 3 4\n",
+                                      &report);
+    EXPECT_DOUBLE_EQ(report.resolution, 2 * PrescoreSettings{}.resolution);
     const double unit = kDefaultSize / 4;  // the frame is 4 units wide
     const double area = unit * unit * (0.5 * 4 * 3 - 0.5 * 2 * 1);
     const double perimeter = unit * (4 + 2 * std::sqrt(13.0) + 2 + 2 * std::sqrt(2.0));
     const double d = kThickenOffset * report.input.diagonal / report.resolution;
     const double grown = 2 * d * area + perimeter * M_PI * d * d / 2;
-    EXPECT_NEAR(volume, grown, 0.1 * grown) << "offset " << d << " m";
+    EXPECT_NEAR(tets_volume(model.mesh), grown, 0.1 * grown) << "offset " << d << " m";
 }
 
 // A block of 4 x 4 x 4 cubes and, 1 m away, one small cube (6 of 390 tets, 1/512 of the
