@@ -203,7 +203,12 @@ Appearance deserialize(const std::string& bytes, const std::string& path) {
     ByteReader r(bytes, path + " (appearance)", 0);
     Appearance a;
     a.mesh.vertices.resize(r.count(24, "vertices"));
-    for (Vec3& v : a.mesh.vertices) v = Vec3(r.f64(), r.f64(), r.f64());
+    for (Vec3& v : a.mesh.vertices) {
+        // One read per statement: the order a function's arguments are evaluated in is unspecified
+        // (read as Vec3's three arguments, GCC swapped x and z).
+        const double x = r.f64(), y = r.f64(), z = r.f64();
+        v = Vec3(x, y, z);
+    }
     const uint32_t nt = r.count(16, "triangles");
     a.mesh.triangles.resize(nt);
     a.material.resize(nt);
