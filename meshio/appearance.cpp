@@ -163,7 +163,9 @@ Appearance import_in_process(const std::string& path) {
     const std::string fix = "check that the file is a complete mesh in a format assimp reads";
     if (scene == nullptr) throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), fix);
     scene = importer.ApplyPostProcessing(aiProcess_RemoveComponent);
-    if (scene != nullptr) scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate);
+    if (scene != nullptr)
+        scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                             aiProcess_GenUVCoords | aiProcess_TransformUVCoords);
     if (scene == nullptr) throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), fix);
     Appearance out;
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)

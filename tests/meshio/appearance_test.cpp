@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -62,6 +63,31 @@ TEST(Appearance, ColladaDuckFindsItsTgaBesideTheFile) {
     EXPECT_EQ(m.texture.size(), std::filesystem::file_size(kModels + "/Collada/duckCM.tga"));
     EXPECT_EQ(m.texture_name, "duckCM.tga");
     EXPECT_TRUE(a.warnings.empty());
+    // Its positions are load_mesh's (which joins them), each as read: the duck has no symmetry
+    // that would hide two axes swapped (as the isolated import's read once did).
+    const TriangleMesh joined = load_mesh_file(kDuck).mesh;
+    std::set<std::array<double, 3>> places;
+    for (const Vec3& v : joined.vertices) places.insert({v.x(), v.y(), v.z()});
+    size_t found = 0;
+    for (const Vec3& v : a.mesh.vertices) found += places.count({v.x(), v.y(), v.z()});
+    EXPECT_EQ(found, a.mesh.vertices.size());
+}
+
+// A texture mapped by a projection instead of UVs (LightWave's spherical mapping): assimp turns
+// it into texture coordinates, around the sphere in u and from pole to pole in v.
+TEST(Appearance, SphericalMappingBecomesTextureCoordinates) {
+    const std::string earth = kModels + "/LWO/LWO2/MappingModes/earth_spherical_y.lwo";
+    if (!have(earth)) GTEST_SKIP() << earth << " is missing";
+    const Appearance a = load_appearance(earth);
+    ASSERT_EQ(a.uv.size(), a.mesh.vertices.size());
+    float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+    for (const auto& uv : a.uv)
+        for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], uv[size_t(i)]), hi[i] = std::max(hi[i], uv[size_t(i)]);
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_LT(lo[i], 0.05f) << i;
+        EXPECT_GT(hi[i], 0.95f) << i;
+    }
+    EXPECT_FALSE(a.plain());
 }
 
 // The duck copied without its texture: a warning naming the texture, the material untextured.
