@@ -40,14 +40,27 @@ std::string lower(std::string s) {
 }
 
 // A texture file named by a material: as written, relative to the mesh file's folder, and by its
-// bare name in that folder (exporters often keep the path of the machine they ran on).
+// bare name in that folder (exporters often keep the path of the machine they ran on), that bare
+// name also in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg; the
+// first such file in name order).
 std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::filesystem::path dir = std::filesystem::path(mesh_path).parent_path();
+    const std::filesystem::path bare = std::filesystem::path(name).filename();
     std::error_code ec;
-    for (const std::filesystem::path& p : {dir / name, std::filesystem::path(name), dir / std::filesystem::path(name).filename()})
+    for (const std::filesystem::path& p : {dir / name, std::filesystem::path(name), dir / bare})
         if (std::filesystem::is_regular_file(p, ec)) return p.string();
-    return "";
+    const auto lower = [](std::string t) {
+        for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return t;
+    };
+    const std::string wanted = lower(bare.string());
+    std::vector<std::string> matches;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.empty() ? "." : dir, ec))
+        if (lower(entry.path().filename().string()) == wanted && entry.is_regular_file(ec))
+            matches.push_back(entry.path().string());
+    std::sort(matches.begin(), matches.end());
+    return matches.empty() ? "" : matches.front();
 }
 
 std::string read_whole(const std::string& path) {

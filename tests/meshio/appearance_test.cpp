@@ -102,6 +102,22 @@ TEST(Appearance, AMissingTextureIsAWarningNotAnError) {
     EXPECT_EQ(a.mesh.triangles.size(), 4212u);
 }
 
+// The duck copied with its texture named in other letters (as files made on Windows name them):
+// found by its name in any case.
+TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCase) {
+    if (!have(kDuck)) GTEST_SKIP() << kDuck << " is missing";
+    testing_support::TempDir dir;
+    std::filesystem::copy_file(kDuck, dir.file("duck.dae"));
+    std::filesystem::copy_file(kModels + "/Collada/duckCM.tga", dir.file("DUCKcm.TGA"));
+    const Appearance a = load_appearance(dir.file("duck.dae"));
+    EXPECT_TRUE(a.warnings.empty());
+    std::set<uint32_t> used(a.material.begin(), a.material.end());
+    ASSERT_EQ(used.size(), 1u);
+    const Material& m = a.materials.at(*used.begin());
+    EXPECT_EQ(m.texture.size(), std::filesystem::file_size(kModels + "/Collada/duckCM.tga"));
+    EXPECT_EQ(m.texture_name, "DUCKcm.TGA");
+}
+
 TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
     EXPECT_EQ(image_mime("\x89PNG\r\n\x1a\nrest", "x.tga"), "image/png");
     EXPECT_EQ(image_mime("\xff\xd8\xff\xe0", "x"), "image/jpeg");
