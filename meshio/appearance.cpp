@@ -7,7 +7,6 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -50,10 +49,6 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::error_code ec;
     for (const std::filesystem::path& p : {dir / name, std::filesystem::path(name), dir / bare})
         if (std::filesystem::is_regular_file(p, ec)) return p.string();
-    const auto lower = [](std::string t) {
-        for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-        return t;
-    };
     const std::string wanted = lower(bare.string());
     std::vector<std::string> matches;
     for (const auto& entry : std::filesystem::directory_iterator(dir.empty() ? "." : dir, ec))
