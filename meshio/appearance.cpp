@@ -38,10 +38,28 @@ std::string lower(std::string s) {
     return s;
 }
 
+// The files in `dir` (not below) whose names are `wanted` in any letter case, in name order;
+// its folders into `folders` when given.
+std::vector<std::string> files_named(const std::filesystem::path& dir, const std::string& wanted,
+                                     std::vector<std::string>* folders) {
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        if (entry.is_directory(ec)) {
+            if (folders) folders->push_back(entry.path().string());
+        } else if (lower(entry.path().filename().string()) == wanted && entry.is_regular_file(ec)) {
+            found.push_back(entry.path().string());
+        }
+    }
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
 // A texture file named by a material: as written, relative to the mesh file's folder, and by its
-// bare name in that folder (exporters often keep the path of the machine they ran on), that bare
-// name also in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg; the
-// first such file in name order).
+// bare name in that folder (exporters often keep the path of the machine they ran on); then that
+// bare name in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg), in the
+// mesh file's folder and then in the folders beside it ("textures/", as downloads ship them),
+// the first in name order.
 std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::filesystem::path dir = std::filesystem::path(mesh_path).parent_path();
@@ -50,12 +68,11 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     for (const std::filesystem::path& p : {dir / name, std::filesystem::path(name), dir / bare})
         if (std::filesystem::is_regular_file(p, ec)) return p.string();
     const std::string wanted = lower(bare.string());
-    std::vector<std::string> matches;
-    for (const auto& entry : std::filesystem::directory_iterator(dir.empty() ? "." : dir, ec))
-        if (lower(entry.path().filename().string()) == wanted && entry.is_regular_file(ec))
-            matches.push_back(entry.path().string());
-    std::sort(matches.begin(), matches.end());
-    return matches.empty() ? "" : matches.front();
+    std::vector<std::string> folders;
+    std::vector<std::string> found = files_named(dir.empty() ? "." : dir, wanted, &folders);
+    std::sort(folders.begin(), folders.end());
+    for (size_t i = 0; found.empty() && i < folders.size(); ++i) found = files_named(folders[i], wanted, nullptr);
+    return found.empty() ? "" : found.front();
 }
 
 std::string read_whole(const std::string& path) {

@@ -102,20 +102,28 @@ TEST(Appearance, AMissingTextureIsAWarningNotAnError) {
     EXPECT_EQ(a.mesh.triangles.size(), 4212u);
 }
 
-// The duck copied with its texture named in other letters (as files made on Windows name them):
-// found by its name in any case.
-TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCase) {
+// The duck copied with its texture named in other letters (as files made on Windows name them),
+// beside it and in a folder beside it: found by its name in any case, beside it first.
+TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCaseBesideTheFileOrInAFolderBesideIt) {
     if (!have(kDuck)) GTEST_SKIP() << kDuck << " is missing";
+    const std::string tga = kModels + "/Collada/duckCM.tga";
+    const auto texture_of = [](const Appearance& a) {
+        std::set<uint32_t> used(a.material.begin(), a.material.end());
+        EXPECT_EQ(used.size(), 1u);
+        return a.materials.at(*used.begin());
+    };
     testing_support::TempDir dir;
     std::filesystem::copy_file(kDuck, dir.file("duck.dae"));
-    std::filesystem::copy_file(kModels + "/Collada/duckCM.tga", dir.file("DUCKcm.TGA"));
-    const Appearance a = load_appearance(dir.file("duck.dae"));
+    std::filesystem::create_directory(dir.file("textures"));
+    std::filesystem::copy_file(tga, dir.file("textures/DuckCM.tga"));
+    Appearance a = load_appearance(dir.file("duck.dae"));
     EXPECT_TRUE(a.warnings.empty());
-    std::set<uint32_t> used(a.material.begin(), a.material.end());
-    ASSERT_EQ(used.size(), 1u);
-    const Material& m = a.materials.at(*used.begin());
-    EXPECT_EQ(m.texture.size(), std::filesystem::file_size(kModels + "/Collada/duckCM.tga"));
-    EXPECT_EQ(m.texture_name, "DUCKcm.TGA");
+    EXPECT_EQ(texture_of(a).texture.size(), std::filesystem::file_size(tga));
+    EXPECT_EQ(texture_of(a).texture_name, "DuckCM.tga");
+    std::filesystem::copy_file(tga, dir.file("DUCKcm.TGA"));
+    a = load_appearance(dir.file("duck.dae"));
+    EXPECT_TRUE(a.warnings.empty());
+    EXPECT_EQ(texture_of(a).texture_name, "DUCKcm.TGA");
 }
 
 TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
