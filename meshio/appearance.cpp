@@ -38,6 +38,8 @@ std::string lower(std::string s) {
     return s;
 }
 
+constexpr int kTextureFolderUp = 3;  // folders above the mesh file's searched for a texture's written path
+
 // The files in `dir` (not below) whose names are `wanted` in any letter case, in name order;
 // its folders into `folders` when given.
 std::vector<std::string> files_named(const std::filesystem::path& dir, const std::string& wanted,
@@ -59,7 +61,9 @@ std::vector<std::string> files_named(const std::filesystem::path& dir, const std
 // bare name in that folder (exporters often keep the path of the machine they ran on); then that
 // bare name in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg), in the
 // mesh file's folder and then in the folders beside it ("textures/", as downloads ship them),
-// the first in name order.
+// the first in name order; then the written path's last folders and name under the folders up to
+// kTextureFolderUp above the mesh file's (a project moved from where it was made:
+// D:\...\models\OBJ\wood.jpg named by models/FBX/spider.fbx is models/OBJ/wood.jpg).
 std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::filesystem::path dir = std::filesystem::path(mesh_path).parent_path();
@@ -72,7 +76,20 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::vector<std::string> found = files_named(dir.empty() ? "." : dir, wanted, &folders);
     std::sort(folders.begin(), folders.end());
     for (size_t i = 0; found.empty() && i < folders.size(); ++i) found = files_named(folders[i], wanted, nullptr);
-    return found.empty() ? "" : found.front();
+    if (!found.empty()) return found.front();
+    std::vector<std::string> parts;  // the written path's folders, without a drive or root
+    for (const auto& part : std::filesystem::path(name).relative_path().parent_path())
+        if (part != "." && part != ".." && !part.empty()) parts.push_back(part.string());
+    std::filesystem::path above = std::filesystem::absolute(dir.empty() ? "." : dir, ec);
+    for (int up = 1; up <= kTextureFolderUp && above.has_relative_path(); ++up) {
+        above = above.parent_path();
+        std::filesystem::path tail = bare;
+        for (size_t k = parts.size(); k-- > 0;) {
+            tail = std::filesystem::path(parts[k]) / tail;
+            if (std::filesystem::is_regular_file(above / tail, ec)) return (above / tail).string();
+        }
+    }
+    return "";
 }
 
 std::string read_whole(const std::string& path) {

@@ -126,6 +126,25 @@ TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCaseBesideTheFileOrInAFolder
     EXPECT_EQ(texture_of(a).texture_name, "DUCKcm.TGA");
 }
 
+// assimp's FBX spider names its textures where it was made (D:\projects\...\models\OBJ\
+// drkwood2.jpg, ...); copied to models/FBX/ with the images in models/OBJ/, each is found by the
+// written path's last folder and name under the folder above the file's.
+TEST(Appearance, ATextureIsFoundByTheEndOfItsWrittenPathAboveTheFile) {
+    const std::string spider = kModels + "/FBX/spider.fbx";
+    if (!have(spider)) GTEST_SKIP() << spider << " is missing";
+    testing_support::TempDir dir;
+    std::filesystem::create_directories(dir.file("models/FBX"));
+    std::filesystem::create_directories(dir.file("models/OBJ"));
+    std::filesystem::copy_file(spider, dir.file("models/FBX/spider.fbx"));
+    for (const char* image : {"drkwood2.jpg", "wal67ar_small.jpg", "wal69ar_small.jpg", "engineflare1.jpg", "SpiderTex.jpg"})
+        std::filesystem::copy_file(kModels + "/OBJ/" + image, dir.file(std::string("models/OBJ/") + image));
+    const Appearance a = load_appearance(dir.file("models/FBX/spider.fbx"));
+    EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
+    size_t textured = 0;
+    for (const Material& m : a.materials) textured += !m.texture.empty();
+    EXPECT_EQ(textured, 4u);
+}
+
 TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
     EXPECT_EQ(image_mime("\x89PNG\r\n\x1a\nrest", "x.tga"), "image/png");
     EXPECT_EQ(image_mime("\xff\xd8\xff\xe0", "x"), "image/jpeg");
