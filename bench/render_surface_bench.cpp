@@ -50,9 +50,8 @@ int main(int argc, char** argv) {
         rs.margin = margin_tets * diagonal / report.resolution;
         auto t2 = Clock::now();
         // As prescore: a surface too large for CGAL's simplification is reduced first.
-        const TriangleMesh reduced = input.triangles.size() > kRenderSurfaceSimplifyLimit
-                                         ? reduce_surface(input, kRenderSurfaceReduced)
-                                         : input;
+        const std::optional<TriangleMesh> first = first_reduction(input);
+        const TriangleMesh& reduced = first ? *first : input;
         const TriangleMesh simplified = simplify_surface(reduced, max_triangles);
         const std::vector<RenderSurface> surfaces = render_surfaces(
             simplified, model, rs, simplified.triangles.size() < reduced.triangles.size() ? &reduced : nullptr);

@@ -177,23 +177,22 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
-    TriangleMesh reduced;
+    const std::optional<TriangleMesh> reduced = first_reduction(surface);
     const TriangleMesh* from = &surface;
-    if (surface.triangles.size() > kRenderSurfaceSimplifyLimit) {
-        reduced = reduce_surface(surface, kRenderSurfaceReduced);
-        if (reduced.triangles.size() > kRenderSurfaceSimplifyLimit) {
+    if (reduced) {
+        if (reduced->triangles.size() > kRenderSurfaceSimplifyLimit) {
             report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
                                 fmt::format("the surface has {} triangles, and {} after a first simplification, more "
                                             "than the {} that are simplified for drawing within a few seconds; "
                                             "[prescore] render_surface = false to say so",
-                                            surface.triangles.size(), reduced.triangles.size(),
+                                            surface.triangles.size(), reduced->triangles.size(),
                                             kRenderSurfaceSimplifyLimit));
             return;
         }
         spdlog::info("render surfaces: the surface's {} triangles first reduced to {} (meshoptimizer) in {:.2f} s",
-                     surface.triangles.size(), reduced.triangles.size(),
+                     surface.triangles.size(), reduced->triangles.size(),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        from = &reduced;
+        from = &*reduced;
     }
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;

@@ -75,6 +75,11 @@ TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles) {
     return out;
 }
 
+std::optional<TriangleMesh> first_reduction(const TriangleMesh& surface) {
+    if (surface.triangles.size() <= kRenderSurfaceSimplifyLimit) return std::nullopt;
+    return reduce_surface(surface, kRenderSurfaceReduced);
+}
+
 RenderSurface flat_render_surface(const PieceSurface& surface) {
     RenderSurface out;
     out.fell_back = true;

@@ -20,6 +20,7 @@
 // docs/render.md, "Render surfaces", gives the measurements.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/geometry.h"
@@ -50,8 +51,8 @@ inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many tr
 // `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
 // (Lindstrom-Turk), deterministic. Sheets that touch along an edge or at a vertex get their own
 // copies of the shared vertices first (a border that leaves is closed with a patch); a result
-// that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when already within, or when it is not a closed
-// polygon mesh.
+// that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when
+// already within, or when it is not a closed polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
 
 // `surface` with at most `max_triangles` triangles, by meshoptimizer's edge collapse (quadric
@@ -62,6 +63,10 @@ TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles)
 // triangles that cross are left to simplify_surface. The first cut of a surface too large for
 // simplify_surface.
 TriangleMesh reduce_surface(const TriangleMesh& surface, size_t max_triangles);
+
+// The first cut a surface gets before simplify_surface: reduce_surface to kRenderSurfaceReduced
+// triangles when it has more than kRenderSurfaceSimplifyLimit; nullopt when it needs none.
+std::optional<TriangleMesh> first_reduction(const TriangleMesh& surface);
 
 struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
