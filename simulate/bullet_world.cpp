@@ -987,49 +987,63 @@ void BulletWorld::apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kic
     }
 }
 
-void BulletWorld::joined_pieces(size_t c, size_t limit, JoinedPieces* out) const {
+void BulletWorld::fragments(Fragments* out) const {
+    const Impl& m = *impl_;
+    out->of.assign(m.pieces.size(), UINT32_MAX);
+    out->first.clear();
+    out->pieces.clear();
+    for (uint32_t p = 0; p < m.pieces.size(); ++p) {
+        if (out->of[p] != UINT32_MAX) continue;
+        const uint32_t f = uint32_t(out->first.size()), start = uint32_t(out->pieces.size());
+        out->first.push_back(start);
+        out->of[p] = f;
+        out->pieces.push_back(p);
+        for (size_t next = start; next < out->pieces.size(); ++next)
+            for (const Impl::Link& l : m.links[out->pieces[next]]) {
+                if (out->of[l.other] != UINT32_MAX) continue;
+                out->of[l.other] = f;
+                out->pieces.push_back(l.other);
+            }
+        std::sort(out->pieces.begin() + start, out->pieces.end());
+    }
+    out->first.push_back(uint32_t(out->pieces.size()));
+}
+
+void BulletWorld::joined_pieces(size_t c, size_t limit, const Fragments& fragments, JoinedPieces* out) const {
     const Impl& m = *impl_;
     const uint32_t start[2] = {m.joints[c].piece_a, m.joints[c].piece_b};
+    const uint32_t fragment[2] = {fragments.of[start[0]], fragments.of[start[1]]};
     *out = JoinedPieces{};
+    out->parted = fragment[0] != fragment[1];
+    if (!out->parted && fragments.size(fragment[0]) > limit) {
+        out->held = true;
+        return;
+    }
     std::vector<int8_t>& side = m.joined_side;
     side.resize(m.pieces.size(), -1);
-    // Every joint is met from both its pieces once the search has reached both: kept from its piece_a.
-    size_t joints_a = 0;  // of them, piece_a's side's (when parted)
-    for (int s = 0; s < 2 && !out->held; ++s) {
-        if (side[start[s]] >= 0) break;  // piece_b was reached from piece_a: not parted
-        if (s == 1) {
-            out->parted = true;
-            out->side_b = out->pieces.size();
-            joints_a = out->joints.size();
+    for (int s = 0; s < (out->parted ? 2 : 1); ++s) {
+        if (s == 1) out->side_b = out->pieces.size();
+        const uint32_t f = fragment[s];
+        if (fragments.size(f) > limit) {
+            // Past the limit: the side moves as one rigid body, its joints are not wanted.
+            out->pieces.insert(out->pieces.end(), fragments.pieces.begin() + fragments.first[f],
+                               fragments.pieces.begin() + fragments.first[f + 1]);
+            continue;
         }
+        // Every joint is met from both its pieces: kept from its piece_a.
+        const size_t begin = out->pieces.size();
         side[start[s]] = int8_t(s);
         out->pieces.push_back(start[s]);
-        for (size_t next = out->pieces.size() - 1; next < out->pieces.size(); ++next) {
+        for (size_t next = begin; next < out->pieces.size(); ++next)
             for (const Impl::Link& l : m.links[out->pieces[next]]) {
                 if (l.is_a) out->joints.push_back(l.joint);
                 if (side[l.other] >= 0) continue;
                 side[l.other] = int8_t(s);
                 out->pieces.push_back(l.other);
             }
-            // Past the limit with piece_b already reached: a break inside a large body.
-            if (s == 0 && out->pieces.size() > limit && side[start[1]] == 0) {
-                out->held = true;
-                break;
-            }
-        }
-    }
-    for (uint32_t p : out->pieces) side[p] = -1;
-    if (out->held) {
-        out->joints.clear();
-        return;
+        for (size_t i = begin; i < out->pieces.size(); ++i) side[out->pieces[i]] = -1;
     }
     if (!out->parted) out->side_b = out->pieces.size();
-    // Two sides apart, of which one is past the limit: that one moves as one rigid body
-    // (breaking.h), so only the other's joints are wanted. Each side's joints were met together.
-    if (out->parted && out->pieces.size() > limit) {
-        if (out->side_b > limit) out->joints.erase(out->joints.begin(), out->joints.begin() + std::ptrdiff_t(joints_a));
-        if (out->pieces.size() - out->side_b > limit) out->joints.resize(out->side_b > limit ? 0 : joints_a);
-    }
     std::sort(out->joints.begin(), out->joints.end());
 }
 

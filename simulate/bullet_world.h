@@ -187,18 +187,30 @@ public:
     // What a break's kicks act through (simulate/joined_response.h): the pieces joined, through
     // the active joints, to either piece of a constraint that has left the world, and the active
     // joints among them. `parted`: the two pieces are no longer joined (side 1 holds piece_b's).
+    // The fragments the active joints make now: the pieces joined to each other through them
+    // (driven pieces included), each fragment's pieces ascending. Found once for all the breaks of
+    // a step, after its removals: a break's side past the search's limit is taken from here.
+    struct Fragments {
+        std::vector<uint32_t> of;      // per piece: its fragment
+        std::vector<uint32_t> first;   // per fragment, and one past the last: where its pieces start
+        std::vector<uint32_t> pieces;  // fragment by fragment, ascending within each
+        size_t size(uint32_t f) const { return first[f + 1] - first[f]; }
+    };
+    void fragments(Fragments* out) const;
     struct JoinedPieces {
-        std::vector<uint32_t> pieces;  // piece_a's side first, each side in the order reached
-        // Ascending. Parted with more than `limit` pieces in all: only those of a side within the
-        // limit (a larger side moves as one rigid body).
+        // piece_a's side first; a side within the limit in the order the search reached it, a
+        // larger one ascending (its fragment's list).
+        std::vector<uint32_t> pieces;
+        // Ascending: the joints among a side within the limit (a larger side moves as one rigid
+        // body, breaking.h).
         std::vector<uint32_t> joints;
         size_t side_b = 0;             // pieces[side_b..] are piece_b's side (none when not parted)
         bool parted = false;
-        // Not parted, and more than `limit` pieces joined: the search stopped there (pieces
-        // incomplete, no joints).
+        // Not parted, and more than `limit` pieces joined (pieces and joints left empty).
         bool held = false;
     };
-    void joined_pieces(size_t c, size_t limit, JoinedPieces* out) const;
+    // `fragments`: as fragments() gives them after the step's removals.
+    void joined_pieces(size_t c, size_t limit, const Fragments& fragments, JoinedPieces* out) const;
     // The bodies (in the order of `joined.pieces`) and joints as joined_response() takes them,
     // and the bodies' velocities.
     void joined_bodies(const JoinedPieces& joined, std::vector<JoinedBody>* bodies, std::vector<JoinedJoint>* joints,

@@ -32,14 +32,23 @@ std::vector<VelocityChange> joined_response(const std::vector<JoinedBody>& bodie
     if (n == 0) return out;
     // (M + sum_j kappa_j G_j^T G_j) du = j: the joints as stiff penalties in the bodies' space,
     // where a pair held at more points than it needs costs nothing (no singular system).
-    std::vector<Eigen::Triplet<double>> entries;
+    // Summed block by block (6 x 6 per pair of bodies), each entry in the order of the terms:
+    // a body's mass and inertia, then each joint's term in turn.
+    using Block = Eigen::Matrix<double, 6, 6>;
+    struct Sum {
+        uint32_t row, col;  // bodies
+        Block value;
+        bool joined;  // a joint's term added: all 36 entries stand (else a body's 12 of mass and inertia)
+    };
+    std::vector<Sum> sums;
+    std::vector<std::vector<std::pair<uint32_t, size_t>>> sum_at(bodies.size());  // per row body: (column body, sum)
     for (size_t x = 0; x < bodies.size(); ++x) {
         if (column[x] < 0) continue;
-        const Mat3 inertia = bodies[x].inv_inertia.inverse();
-        for (int p = 0; p < 3; ++p) {
-            entries.emplace_back(column[x] + p, column[x] + p, 1.0 / bodies[x].inv_mass);
-            for (int q = 0; q < 3; ++q) entries.emplace_back(column[x] + 3 + p, column[x] + 3 + q, inertia(p, q));
-        }
+        Block m = Block::Zero();
+        m.topLeftCorner<3, 3>().diagonal().setConstant(1.0 / bodies[x].inv_mass);
+        m.bottomRightCorner<3, 3>() = bodies[x].inv_inertia.inverse();
+        sum_at[x].push_back({uint32_t(x), sums.size()});
+        sums.push_back({uint32_t(x), uint32_t(x), m, false});
     }
     for (const JoinedJoint& joint : joints) {
         const uint32_t body[2] = {joint.a, joint.b};
@@ -55,11 +64,32 @@ std::vector<VelocityChange> joined_response(const std::vector<JoinedBody>& bodie
         for (int k = 0; k < 2; ++k)
             for (int l = 0; l < 2; ++l) {
                 if (column[body[k]] < 0 || column[body[l]] < 0) continue;
-                const Eigen::Matrix<double, 6, 6> block = kappa * g[k].transpose() * g[l];
-                for (int p = 0; p < 6; ++p)
-                    for (int q = 0; q < 6; ++q) entries.emplace_back(column[body[k]] + p, column[body[l]] + q, block(p, q));
+                const Block term = kappa * g[k].transpose() * g[l];
+                auto& row = sum_at[body[k]];
+                auto at = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == body[l]; });
+                if (at == row.end()) {
+                    row.push_back({body[l], sums.size()});
+                    sums.push_back({body[k], body[l], term, true});
+                    continue;
+                }
+                Sum& sum = sums[at->second];
+                if (sum.joined) {
+                    sum.value += term;
+                } else {  // a body's own block: its mass and inertia entries first
+                    Block first = term;
+                    first.topLeftCorner<3, 3>().diagonal() = sum.value.topLeftCorner<3, 3>().diagonal() + term.topLeftCorner<3, 3>().diagonal();
+                    first.bottomRightCorner<3, 3>() = sum.value.bottomRightCorner<3, 3>() + term.bottomRightCorner<3, 3>();
+                    sum.value = first;
+                    sum.joined = true;
+                }
             }
     }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (const Sum& sum : sums)
+        for (int p = 0; p < 6; ++p)
+            for (int q = 0; q < 6; ++q)
+                if (sum.joined || (p < 3 && q == p) || (p >= 3 && q >= 3))
+                    entries.emplace_back(column[sum.row] + p, column[sum.col] + q, sum.value(p, q));
     Eigen::SparseMatrix<double> a(n, n);
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);

@@ -162,10 +162,16 @@ public:
         const auto start_energize = std::chrono::steady_clock::now();
         std::vector<Vec3> frames;
         std::vector<std::optional<BulletWorld::JoinedPieces>> joined(broken.size());
+        split_held_.clear();
+        if (energize_.bodies == KickBodies::Joined) {
+            world_.fragments(&fragments_);
+            for (size_t h = 0; h < held_.size(); ++h)
+                if (split(held_[h])) split_held_.push_back(h);
+        }
         for (size_t i = 0; i < broken.size(); ++i) {
             if (energize_.bodies == KickBodies::Joined) {
                 joined[i].emplace();
-                world_.joined_pieces(broken[i], kJoinedPiecesLimit, &*joined[i]);
+                world_.joined_pieces(broken[i], kJoinedPiecesLimit, fragments_, &*joined[i]);
                 frames.push_back(world_.centre_velocity(joined[i]->pieces));
             } else {
                 Vec3 pivot;
@@ -178,6 +184,7 @@ public:
             energize_break(broken[i], loads[i], frames[i], joined[i] ? &*joined[i] : nullptr, out);
             if (broken[i] < overlap_.size()) out.breaks.back().overlap = overlap_[broken[i]];
         }
+        held_.erase(std::remove_if(held_.begin(), held_.end(), [](const Held& h) { return h.released; }), held_.end());
         // The pairs this step's breaks touched, for the overlap check (ascending), which drops those
         // no joint holds any more.
         for (size_t c : broken) {
@@ -316,29 +323,27 @@ private:
     void energize_break(size_t c, const std::array<BodyAtPivot, 2>& load, const Vec3& frame,
                         const BulletWorld::JoinedPieces* joined, SimulationResult& out) {
         const auto start = std::chrono::steady_clock::now();
-        // The energy held by earlier breaks whose two pieces this one parts.
+        // The energy held by earlier breaks whose two pieces this one parts: one on each side, or
+        // one on either side and the other not joined to it any more (the two sides are the
+        // fragments of the break's pieces), which the step's breaks did together, none of them
+        // with the two on its two sides. Only a pair the step's breaks split can be one.
         double release = 0;
-        std::vector<bool> parted;  // per held_ entry (only a break that parts can release one)
+        std::vector<size_t> parted;  // indices into held_
         if (joined && joined->parted) {
-            parted.assign(held_.size(), false);
-            std::vector<int8_t> side(world_.pieces(), -1);
-            for (size_t i = 0; i < joined->pieces.size(); ++i) side[joined->pieces[i]] = int8_t(i >= joined->side_b);
-            // Parted: one on each side; or one on either side and the other not joined to it any
-            // more (the two sides are everything joined to the break's pieces), which the step's
-            // breaks did together, none of them with the two on its two sides.
-            for (size_t h = 0; h < held_.size(); ++h) {
-                const int8_t a = side[held_[h].piece_a], b = side[held_[h].piece_b];
-                if ((a >= 0) != (b >= 0) || (a >= 0 && a != b)) parted[h] = true, release += held_[h].energy;
+            const uint32_t side[2] = {fragments_.of[joined->pieces[0]], fragments_.of[joined->pieces[joined->side_b]]};
+            for (size_t h : split_held_) {
+                if (held_[h].released) continue;
+                const uint32_t a = fragments_.of[held_[h].piece_a], b = fragments_.of[held_[h].piece_b];
+                if (a == side[0] || a == side[1] || b == side[0] || b == side[1]) parted.push_back(h), release += held_[h].energy;
             }
         }
         BreakRecord r = energize_broken(world_, c, load, energize_, break_key(in_.simulate.seed, c), frame, joined, release);
-        if (r.released_energy > 0) {
-            size_t kept = 0;
-            for (size_t h = 0; h < held_.size(); ++h)
-                if (!parted[h]) held_[kept++] = held_[h];
-            held_.resize(kept);
+        if (r.released_energy > 0)
+            for (size_t h : parted) held_[h].released = true;  // taken out after the step's breaks
+        if (r.held_energy > 0) {
+            held_.push_back({r.piece_a, r.piece_b, r.held_energy});
+            if (joined && split(held_.back())) split_held_.push_back(held_.size() - 1);
         }
-        if (r.held_energy > 0) held_.push_back({r.piece_a, r.piece_b, r.held_energy});
         r.step = world_.h();
         out.energize_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         injected_ += r.injected_energy + r.momentum_work;
@@ -360,14 +365,19 @@ private:
     std::vector<size_t> overlapped_;  // the joints overlap_ holds a depth for
     BreakPolicy policy_;
     EnergizeSettings energize_;
+    BulletWorld::Fragments fragments_;  // after_step's scratch: the fragments its breaks leave
     double injected_ = 0, removed_ = 0;
     double frame_residual_ = 0;
     // Energy held by breaks whose pieces the joints still hold together, until a break parts them.
     struct Held {
         uint32_t piece_a, piece_b;
         double energy;  // (unit: J)
+        bool released = false;
     };
     std::vector<Held> held_;
+    // After a step's removals: held_'s entries whose two pieces are in two fragments (ascending).
+    std::vector<size_t> split_held_;
+    bool split(const Held& h) const { return fragments_.of[h.piece_a] != fragments_.of[h.piece_b]; }
     std::vector<Vec3> before_;  // the joints' forces before a probe step
     // The last probe's largest load over strength by the joints' stretch (spring_load_) and by
     // everything else (other_load_: the solver's force, omega h |df|, approaching contacts).

@@ -421,5 +421,57 @@ TEST(Fracture, AHingeThatOpensTheCrackHolds) {
     EXPECT_LT(t.pose(t.frames() - 1, 1).position.y(), 1 - 0.01);
 }
 
+// A row of 30 boxes, each joined to the next, the last also to box 6; the joint between boxes 5
+// and 6 and one of two joints between boxes 2 and 3 and between 20 and 21 taken out. What a break's kicks act through then follows from
+// the row: two fragments, of 6 and 24 boxes.
+TEST(Fracture, ABreaksSidesAreItsPiecesFragmentsAndOnePastTheLimitMovesWhole) {
+    BoxModelBuilder b;
+    constexpr int kBoxes = 30;
+    for (int i = 0; i < kBoxes; ++i) b.box(Vec3(kSide * i, 1, 0), Vec3::Constant(kSide));
+    for (uint32_t i = 0; i + 1 < kBoxes; ++i) b.join(i, i + 1, Vec3(kSide * (i + 0.5), 1, 0));  // joint i
+    b.join(20, 21, Vec3(kSide * 20.5, 1.01, 0));  // joint 29, beside joint 20
+    b.join(2, 3, Vec3(kSide * 2.5, 1.01, 0));     // joint 30, beside joint 2
+    b.join(6, 29, Vec3(kSide * 17.5, 1, 0));      // joint 31: a ring (searched from 6: 6, 7, 29, 8, 28, ...)
+    WorldSetup setup;
+    setup.scene.ground = false;
+    BulletWorld world(b.model(), setup);
+    for (size_t c : {5, 20, 2}) world.remove_constraint(c);
+    BulletWorld::Fragments f;
+    world.fragments(&f);
+    ASSERT_EQ(f.first.size(), 3u);  // two fragments
+    EXPECT_EQ(f.size(f.of[0]), 6u);
+    EXPECT_EQ(f.size(f.of[6]), 24u);
+    for (uint32_t p = 0; p < kBoxes; ++p) EXPECT_EQ(f.of[p], f.of[p < 6 ? 0 : 6]) << p;
+
+    // Parted: box 5's side as the search reaches it, with its joints (ascending); box 6's, past
+    // the limit, every piece ascending and no joints.
+    BulletWorld::JoinedPieces parted;
+    world.joined_pieces(5, kJoinedPiecesLimit, f, &parted);
+    EXPECT_TRUE(parted.parted);
+    EXPECT_FALSE(parted.held);
+    ASSERT_EQ(parted.side_b, 6u);
+    EXPECT_EQ(std::vector<uint32_t>(parted.pieces.begin(), parted.pieces.begin() + 6),
+              (std::vector<uint32_t>{5, 4, 3, 2, 1, 0}));
+    std::vector<uint32_t> large(24);
+    for (uint32_t i = 0; i < 24; ++i) large[i] = 6 + i;
+    EXPECT_EQ(std::vector<uint32_t>(parted.pieces.begin() + 6, parted.pieces.end()), large);
+    EXPECT_EQ(parted.joints, (std::vector<uint32_t>{0, 1, 3, 4, 30}));
+
+    // Not parted within the limit: the whole fragment, joints included.
+    BulletWorld::JoinedPieces small;
+    world.joined_pieces(2, kJoinedPiecesLimit, f, &small);
+    EXPECT_FALSE(small.parted);
+    EXPECT_FALSE(small.held);
+    EXPECT_EQ(small.pieces, (std::vector<uint32_t>{2, 1, 3, 0, 4, 5}));
+    EXPECT_EQ(small.side_b, 6u);
+
+    // Not parted past the limit: held.
+    BulletWorld::JoinedPieces held;
+    world.joined_pieces(20, kJoinedPiecesLimit, f, &held);
+    EXPECT_TRUE(held.held);
+    EXPECT_FALSE(held.parted);
+    EXPECT_TRUE(held.pieces.empty());
+}
+
 }  // namespace
 }  // namespace shatter
