@@ -35,13 +35,30 @@ double choose_scale(const TriangleMesh& mesh, double file_metres_per_unit, const
     const double longest = mesh.vertices.empty() ? 0 : (hi - lo).maxCoeff();
     if (settings.size) return longest > 0 ? *settings.size / longest : 1.0;
     if (settings.scale) return *settings.scale;
-    if (file_metres_per_unit > 0) return file_metres_per_unit;
+    if (file_metres_per_unit > 0) {
+        const std::string hint = units_hint(longest * file_metres_per_unit);
+        if (!hint.empty()) spdlog::warn("{}: {}", settings.path, hint);
+        return file_metres_per_unit;
+    }
     if (!(longest > 0)) return 1.0;  // flat or empty: refused later with the real reason
     const double scale = kDefaultSize / longest;
     choices.note(fmt::format("size {:g} m (scale {:.6g} m per unit)", kDefaultSize, scale),
                  fmt::format("the file has no units and the shot gives no size or scale; its longest side is {:.6g} "
                              "units (set [mesh] size or scale, --size or --scale)", longest));
     return scale;
+}
+
+std::string units_hint(double longest) {
+    if (!(longest > kPlausibleLongest[1]) && !(longest < kPlausibleLongest[0])) return "";
+    if (longest < kPlausibleLongest[0])
+        return fmt::format("the mesh is {:.3g} m long by its file's units; if that is not meant, [mesh] size (--size) "
+                           "sets its longest side, e.g. --size 0.3",
+                           longest);
+    return fmt::format("the mesh is {:.4g} m long by its file's units, so it falls and breaks as slowly as a "
+                       "building would; made in millimetres it would be {:.3g} m long (--scale 0.001), in "
+                       "centimetres {:.3g} m (--scale 0.01), in inches {:.3g} m (--scale 0.0254); or --size 0.3 "
+                       "makes it 0.3 m",
+                       longest, longest * 1e-3, longest * 1e-2, longest * 0.0254);
 }
 
 namespace {

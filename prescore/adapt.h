@@ -59,9 +59,19 @@ struct AutoChoices {
 };
 
 // Metres per file unit: settings.size (the longest side), else settings.scale, else the file's
-// own units, else what makes the longest side kDefaultSize (a choice, noted).
+// own units, else what makes the longest side kDefaultSize (a choice, noted). Taken from the
+// file's units, a size outside kPlausibleLongest is logged as a warning with units_hint's words.
 double choose_scale(const TriangleMesh& mesh, double file_metres_per_unit, const MeshSettings& settings,
                     AutoChoices& choices);
+
+// An object whose file's units make its longest side fall outside these is likely modelled in
+// other units (a CAD part in millimetres exported as metres: glTF sample 2CylinderEngine is
+// 743 m long by its file) (unit: m).
+inline constexpr double kPlausibleLongest[2] = {1e-3, 50};
+// What the longest side `longest` (unit: m, by the file's units) would be had the file been made
+// in millimetres, centimetres or inches, with the settings that say so; empty within
+// kPlausibleLongest.
+std::string units_hint(double longest);
 
 struct FittedTets {
     TetMesh tets;

@@ -90,6 +90,16 @@ TEST(PrescoreCommand, HelpListsEveryOptionWithItsDefault) {
     EXPECT_NE(r.out.find("kg/m^3, default: 2400"), std::string::npos);
 }
 
+TEST(PrescoreCommand, AFileInMetresThatMakesAnEngine743MetresLongIsWarnedWithTheScaleForMillimetres) {
+    TempDir dir;
+    auto r = run_shatter({"prescore", "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+                          "--pieces", "2", "--resolution", "8", "-o", dir.file("e.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string log = r.out + r.err;
+    EXPECT_NE(log.find("2CylinderEngine.glb: the mesh is 743.4 m long by its file's units"), std::string::npos) << log;
+    EXPECT_NE(log.find("0.743 m long (--scale 0.001)"), std::string::npos) << log;
+}
+
 // One bad input: the exit code, a message naming `expect`, and no file left in the output folder.
 struct BadCase {
     const char* name;

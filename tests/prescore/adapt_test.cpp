@@ -94,6 +94,20 @@ TEST(Adapt, SizeWinsOverScaleWhichWinsOverTheFileUnitsAndAUnitlessFileIsMadeThre
     EXPECT_EQ(choices.to_json()[0]["what"], choices.list[0].what);
 }
 
+TEST(Adapt, AFileWhoseUnitsMakeItHugeOrTinyIsToldTheSizesOtherUnitsWouldGive) {
+    EXPECT_EQ(units_hint(0.3), "");
+    EXPECT_EQ(units_hint(kPlausibleLongest[1]), "");
+    EXPECT_EQ(units_hint(kPlausibleLongest[0]), "");
+    // glTF's 2CylinderEngine: 743.4 m by its file (metres), 0.743 m had it meant millimetres.
+    const std::string large = units_hint(743.4);
+    for (const char* part : {"743.4 m long", "0.743 m long (--scale 0.001)", "7.43 m (--scale 0.01)",
+                             "18.9 m (--scale 0.0254)", "--size 0.3"})
+        EXPECT_NE(large.find(part), std::string::npos) << part << " in: " << large;
+    const std::string tiny = units_hint(5e-4);
+    EXPECT_NE(tiny.find("0.0005 m long"), std::string::npos) << tiny;
+    EXPECT_NE(tiny.find("--size"), std::string::npos) << tiny;
+}
+
 // A plate 1 m wide and 1 cm thick: at resolution 20 a tet is 7 cm, seven times the plate's
 // thickness, so Mesh_3 loses it. Adapting ends in one connected body that fills at least the
 // plate and at most the plate grown on every side by the thickening offset.
