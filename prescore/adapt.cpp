@@ -261,18 +261,28 @@ Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, ui
     }
     std::vector<char> large(size_t(count), 1);
     int32_t large_count = count;
+    const double largest = count > 0 ? *std::max_element(volume.begin(), volume.end()) : 0.0;
     if (adapt)
         for (int32_t c = 0; c < count; ++c)
-            if (volume[size_t(c)] < kSliverFraction * total) large[size_t(c)] = 0, --large_count;
-    if (large_count == 0) {  // only small clusters: the largest is the body
-        const auto biggest = std::max_element(volume.begin(), volume.end()) - volume.begin();
-        large[size_t(biggest)] = 1;
-        large_count = 1;
+            if (volume[size_t(c)] < kSliverFraction * total && volume[size_t(c)] < kSliverOfLargest * largest)
+                large[size_t(c)] = 0, --large_count;
+    size_t capped = 0;  // large clusters past kMaxBodies, made slivers
+    if (adapt && large_count > int32_t(kMaxBodies)) {
+        // The largest kMaxBodies stay (ties: the first cluster).
+        std::vector<int32_t> order;
+        for (int32_t c = 0; c < count; ++c)
+            if (large[size_t(c)]) order.push_back(c);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int32_t a, int32_t b) { return volume[size_t(a)] > volume[size_t(b)]; });
+        for (size_t i = kMaxBodies; i < order.size(); ++i) large[size_t(order[i])] = 0, ++capped;
+        large_count = int32_t(kMaxBodies);
     }
     if (adapt && uint32_t(large_count) > pieces) {
         choices.note(fmt::format("pieces {} -> {}", pieces, large_count),
-                     fmt::format("the tets form {} separate bodies of at least {:g}% of the volume each; each needs a "
-                                 "piece", large_count, 100 * kSliverFraction));
+                     fmt::format("the tets form {} separate bodies of at least {:g}% of the volume or {:g}% of the "
+                                 "largest body's each{}; each needs a piece",
+                                 large_count, 100 * kSliverFraction, 100 * kSliverOfLargest,
+                                 capped > 0 ? fmt::format(" (the largest {} of {})", kMaxBodies, large_count + int32_t(capped)) : ""));
         pieces = uint32_t(large_count);
     }
     if (large_count == count) return partition(mesh, topology, pieces, seed);
@@ -318,10 +328,20 @@ Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, ui
     double sliver_volume = 0;
     for (int32_t c = 0; c < count; ++c)
         if (!large[size_t(c)]) sliver_volume += volume[size_t(c)];
-    choices.note(fmt::format("slivers: {} small tet clusters ({} tets, {:.2f}% of the volume) joined their nearest "
-                             "pieces", count - large_count, sliver_tets.size(), 100 * sliver_volume / total),
-                 fmt::format("each is under {:g}% of the volume: too small to be a piece of its own",
-                             100 * kSliverFraction));
+    if (capped > 0)
+        choices.note(fmt::format("slivers: {} of {} separate bodies ({} tets, {:.2f}% of the volume) joined their nearest "
+                                 "pieces", count - large_count, count, sliver_tets.size(), 100 * sliver_volume / total),
+                     fmt::format("{} of them are pieces, the most prescore makes by itself: the largest; the {} "
+                                 "smaller than them{} each move with the piece nearest to it (join the mesh's parts "
+                                 "into fewer bodies for more)",
+                                 kMaxBodies, capped,
+                                 size_t(count - large_count) > capped ? " and the clusters too small to be pieces" : ""));
+    else
+        choices.note(fmt::format("slivers: {} small tet clusters ({} tets, {:.2f}% of the volume) joined their nearest "
+                                 "pieces", count - large_count, sliver_tets.size(), 100 * sliver_volume / total),
+                     fmt::format("each is under {:g}% of the volume and under {:g}% of the largest body's: too small "
+                                 "to be a piece of its own",
+                                 100 * kSliverFraction, 100 * kSliverOfLargest));
     return out;
 }
 

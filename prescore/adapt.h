@@ -15,10 +15,12 @@
 //               or makes no tets;
 //   repair      a surface whose meshing does not end within the vertex budget and kMeshSeconds
 //               (heavy self-intersections) is alpha-wrapped first;
-//   slivers     tet clusters smaller than kSliverFraction of the volume are not pieces of their
-//               own: each joins the piece nearest to it (a piece may then be two clusters that
-//               move as one rigid body);
-//   pieces      when more large clusters remain than pieces were asked for, each gets one.
+//   slivers     tet clusters smaller than kSliverFraction of the volume and kSliverOfLargest of
+//               the largest cluster are not pieces of their own: each joins the piece nearest to
+//               it (a piece may then be two clusters that move as one rigid body); a heap of
+//               similar small bodies (gravel, separate voxels) keeps them all;
+//   pieces      when more large clusters remain than pieces were asked for, each gets one, up
+//               to kMaxBodies (the largest; smaller ones join their nearest pieces as slivers).
 //
 // Every choice is logged in one line and recorded in the model's settings (an "auto" list of
 // what was done and why, with numbers). [mesh] adapt = false (--no-adapt) turns the
@@ -44,6 +46,8 @@ inline constexpr size_t kMaxMeshVertices = 40000;  // Mesh_3 stops here (about 2
 inline constexpr double kMinFilled = 0.85;      // tets' volume / the surface's, below which parts are lost
 inline constexpr double kThickenOffset = 0.75;  // wrap offset when thickening (unit: tet sizes)
 inline constexpr double kSliverFraction = 0.01;  // clusters below this share of the volume join a neighbour
+inline constexpr double kSliverOfLargest = 0.1;  // ... when also below this share of the largest cluster's
+inline constexpr size_t kMaxBodies = 1000;      // most separate bodies made pieces by themselves
 inline constexpr double kMeshSeconds = 15;      // one Mesh_3 call past this is stopped (unit: s)
 
 struct AutoChoice {
@@ -89,9 +93,10 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
                     double diagonal, const MeshSettings& mesh, const PrescoreSettings& settings,
                     const std::string& path, AutoChoices& choices);
 
-// partition() over the clusters of at least kSliverFraction of the volume; the tets of smaller
-// clusters take the piece of the nearest tet (centroid to centroid) of a large one. With adapt,
-// `pieces` is raised to the number of large clusters when it is smaller. When every cluster is
+// partition() over the large clusters (at least kSliverFraction of the volume or kSliverOfLargest
+// of the largest cluster's; at most kMaxBodies of them); the tets of the others take the piece
+// of the nearest tet (centroid to centroid) of a large one. With adapt, `pieces` is raised to
+// the number of large clusters when it is smaller. When every cluster is
 // large and there are at most `pieces` of them, this is exactly partition().
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
                             bool adapt, AutoChoices& choices);

@@ -24,8 +24,10 @@ TriangleMesh box(const Vec3& lo, const Vec3& hi) {
     return m;
 }
 
-// An n x n x n grid of unit-ish cubes from `lo` with edge `h`, each cube split into 6 tets.
+// An n x n x n grid of unit-ish cubes from `lo` with edge `h`, each cube split into 6 tets; a
+// block of its own (it shares no vertex with what `m` held before).
 void add_tet_block(TetMesh& m, const Vec3& lo, double h, int n) {
+    const uint32_t start = uint32_t(m.vertices.size());
     const auto at = [&](int i, int j, int k) {
         m.vertices.push_back(lo + h * Vec3(i, j, k));
         return uint32_t(m.vertices.size() - 1);
@@ -48,7 +50,7 @@ void add_tet_block(TetMesh& m, const Vec3& lo, double h, int n) {
     std::vector<uint32_t> first(m.vertices.size());
     for (uint32_t a = 0; a < m.vertices.size(); ++a) {
         first[a] = a;
-        for (uint32_t b = 0; b < a; ++b)
+        for (uint32_t b = start; b < a; ++b)
             if ((m.vertices[a] - m.vertices[b]).norm() < 1e-12) {
                 first[a] = first[b];
                 break;
@@ -220,6 +222,40 @@ TEST(Adapt, ASliverClusterJoinsThePieceNearestToIt) {
     for (uint32_t t = 385; t < 390; ++t) EXPECT_EQ(q.tet_piece[t], q.tet_piece[384]);
     for (uint32_t t = 0; t < 384; ++t) EXPECT_NE(q.tet_piece[t], q.tet_piece[384]);
     EXPECT_TRUE(none.list.empty());
+}
+
+// A heap of 120 equal cubes apart from each other, each 0.83% of the volume: under the sliver
+// share of the volume, but as large as the largest body, so each is a body and gets a piece.
+TEST(Adapt, AHeapOfSimilarSmallBodiesKeepsEveryBodyAsAPiece) {
+    TetMesh m;
+    for (int i = 0; i < 120; ++i) add_tet_block(m, Vec3(0.5 * (i % 10), 0.5 * (i / 10), 0), 0.25, 1);
+    AutoChoices choices;
+    const Partition p = partition_adapted(m, build_topology(m), 10, 1, true, choices);
+    ASSERT_EQ(p.piece_tets.size(), 120u);
+    for (int i = 0; i < 120; ++i)
+        for (int t = 1; t < 6; ++t) EXPECT_EQ(p.tet_piece[6 * i + t], p.tet_piece[6 * i]) << i;
+    std::vector<uint32_t> piece_of_block;
+    for (int i = 0; i < 120; ++i) piece_of_block.push_back(p.tet_piece[6 * i]);
+    std::sort(piece_of_block.begin(), piece_of_block.end());
+    EXPECT_EQ(std::unique(piece_of_block.begin(), piece_of_block.end()), piece_of_block.end());
+    ASSERT_EQ(choices.list.size(), 1u);
+    EXPECT_NE(choices.list[0].what.find("pieces 10 -> 120"), std::string::npos) << choices.list[0].what;
+}
+
+// Past kMaxBodies separate bodies the largest are pieces and the smaller join their nearest.
+TEST(Adapt, PastTheMostBodiesTheSmallerOnesJoinTheirNearestPieces) {
+    TetMesh m;
+    const int big = int(kMaxBodies);
+    for (int i = 0; i < big; ++i) add_tet_block(m, Vec3(0.5 * (i % 40), 0.5 * (i / 40), 0), 0.25, 1);
+    for (int i = 0; i < 5; ++i) add_tet_block(m, Vec3(0.5 * i, -0.5, 0), 0.15, 1);  // 22% of a big one's volume
+    AutoChoices choices;
+    const Partition p = partition_adapted(m, build_topology(m), 10, 1, true, choices);
+    ASSERT_EQ(p.piece_tets.size(), kMaxBodies);
+    // Small block i lies 0.25 m below big block i (the nearest): it moves with that block's piece.
+    for (int i = 0; i < 5; ++i)
+        for (int t = 0; t < 6; ++t) EXPECT_EQ(p.tet_piece[6 * (big + i) + t], p.tet_piece[6 * i]) << i;
+    ASSERT_EQ(choices.list.size(), 2u);
+    EXPECT_NE(choices.list[1].what.find("5 of 1005 separate bodies"), std::string::npos) << choices.list[1].what;
 }
 
 }  // namespace
