@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/spdlog.h>
 
@@ -100,6 +101,34 @@ private:
     std::shared_ptr<spdlog::sinks::basic_file_sink_mt> sink_;
 };
 
+// Keeps the run's warnings (each once, in order) for its summary, for the lifetime of a run.
+class WarningsKept {
+public:
+    WarningsKept() : sink_(std::make_shared<Sink>()) { spdlog::default_logger()->sinks().push_back(sink_); }
+    ~WarningsKept() {
+        auto& sinks = spdlog::default_logger()->sinks();
+        sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
+    }
+    std::vector<std::string> taken() {
+        std::lock_guard<std::mutex> lock(sink_->kept_mutex);
+        return std::move(sink_->kept);
+    }
+
+private:
+    struct Sink : spdlog::sinks::base_sink<std::mutex> {
+        std::mutex kept_mutex;
+        std::vector<std::string> kept;
+        void sink_it_(const spdlog::details::log_msg& msg) override {
+            if (msg.level != spdlog::level::warn) return;  // errors end the run and are its summary's
+            std::string text(msg.payload.data(), msg.payload.size());
+            std::lock_guard<std::mutex> lock(kept_mutex);
+            if (std::find(kept.begin(), kept.end(), text) == kept.end()) kept.push_back(std::move(text));
+        }
+        void flush_() override {}
+    };
+    std::shared_ptr<Sink> sink_;
+};
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -126,11 +155,13 @@ public:
         make_directories(dir_.string());
         if (options_.chunks == 1) remove_stale_temporaries();
         LogFile log((dir_ / "run.log").string());
+        WarningsKept warnings;
         spdlog::info("run: {} -> {}{}", options_.shot, dir_.string(),
                      options_.overrides.empty() ? "" : fmt::format(" (--set {})", fmt::join(options_.overrides, " ")));
         steps_ = steps();
         for (const StageStep& step : steps_) run_step(step);
         write_report_times(dir_.string(), result_.stages);
+        result_.warnings = warnings.taken();
         return std::move(result_);
     }
 
@@ -550,6 +581,11 @@ std::string format_run_summary(const RunResult& r) {
     if (!r.summary.empty())
         for (const auto& [what, name] : r.summary["files"].items())
             out += fmt::format("  {:<16} {}/{}\n", what, r.output_dir, name.get<std::string>());
+    if (!r.warnings.empty()) {
+        out += fmt::format("warnings: {} (as logged above and in run.log; stages that were up to date said theirs "
+                           "when they ran)\n", r.warnings.size());
+        for (const std::string& w : r.warnings) out += fmt::format("  - {}\n", w);
+    }
     for (const StageReport& s : r.stages)
         if (s.outcome == StageOutcome::Failed) out += fmt::format("FAILED:   {}: {}\n", to_string(s.stage), s.error);
     return out;

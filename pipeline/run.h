@@ -59,6 +59,7 @@ struct RunResult {
     std::vector<StageReport> stages;    // in pipeline order
     nlohmann::ordered_json summary;     // what summary.json holds (empty until simulate has run)
     int exit_code = 0;                  // 0, or the exit code of the first failure (core/error.h)
+    std::vector<std::string> warnings;  // what this run's stages warned of, each once, in order
 };
 
 // The frames `--chunk chunk/chunks` renders: the chunk-th of `chunks` equal ranges of [0, frames),

@@ -51,13 +51,13 @@ double choose_scale(const TriangleMesh& mesh, double file_metres_per_unit, const
 std::string units_hint(double longest) {
     if (!(longest > kPlausibleLongest[1]) && !(longest < kPlausibleLongest[0])) return "";
     if (longest < kPlausibleLongest[0])
-        return fmt::format("the mesh is {:.3g} m long by its file's units; if that is not meant, [mesh] size (--size) "
-                           "sets its longest side, e.g. --size 0.3",
+        return fmt::format("the mesh is {:.3g} m long by its file's units; if that is not meant, [mesh] size sets "
+                           "its longest side, e.g. size = 0.3 (--size 0.3; with shatter run, --set mesh.size=0.3)",
                            longest);
     return fmt::format("the mesh is {:.4g} m long by its file's units, so it falls and breaks as slowly as a "
-                       "building would; made in millimetres it would be {:.3g} m long (--scale 0.001), in "
-                       "centimetres {:.3g} m (--scale 0.01), in inches {:.3g} m (--scale 0.0254); or --size 0.3 "
-                       "makes it 0.3 m",
+                       "building would; made in millimetres it would be {:.3g} m long ([mesh] scale = 0.001), in "
+                       "centimetres {:.3g} m (scale = 0.01), in inches {:.3g} m (scale = 0.0254); or size = 0.3 "
+                       "makes it 0.3 m (--scale 0.001, --size 0.3; with shatter run, --set mesh.scale=0.001)",
                        longest, longest * 1e-3, longest * 1e-2, longest * 0.0254);
 }
 

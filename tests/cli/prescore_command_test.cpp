@@ -97,7 +97,7 @@ TEST(PrescoreCommand, AFileInMetresThatMakesAnEngine743MetresLongIsWarnedWithThe
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string log = r.out + r.err;
     EXPECT_NE(log.find("2CylinderEngine.glb: the mesh is 743.4 m long by its file's units"), std::string::npos) << log;
-    EXPECT_NE(log.find("0.743 m long (--scale 0.001)"), std::string::npos) << log;
+    EXPECT_NE(log.find("0.743 m long ([mesh] scale = 0.001)"), std::string::npos) << log;
 }
 
 // One bad input: the exit code, a message naming `expect`, and no file left in the output folder.

@@ -94,6 +94,11 @@ TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
     const std::string said = strong.out + strong.err;
     EXPECT_NE(said.find("no joint broke"), std::string::npos) << said;
     EXPECT_NE(said.find("substeps = \"auto\" and joints = \"direct\""), std::string::npos) << said;
+    // The summary at the end says it again (standard output), and a run without warnings has none.
+    const size_t listed = strong.out.find("\nwarnings: ");
+    ASSERT_NE(listed, std::string::npos) << strong.out;
+    EXPECT_NE(strong.out.find("  - simulate: no joint broke", listed), std::string::npos) << strong.out;
+    EXPECT_EQ(weak.out.find("warnings: "), std::string::npos) << weak.out;
 }
 
 TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {

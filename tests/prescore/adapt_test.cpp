@@ -102,8 +102,8 @@ TEST(Adapt, AFileWhoseUnitsMakeItHugeOrTinyIsToldTheSizesOtherUnitsWouldGive) {
     EXPECT_EQ(units_hint(kPlausibleLongest[0]), "");
     // glTF's 2CylinderEngine: 743.4 m by its file (metres), 0.743 m had it meant millimetres.
     const std::string large = units_hint(743.4);
-    for (const char* part : {"743.4 m long", "0.743 m long (--scale 0.001)", "7.43 m (--scale 0.01)",
-                             "18.9 m (--scale 0.0254)", "--size 0.3"})
+    for (const char* part : {"743.4 m long", "0.743 m long ([mesh] scale = 0.001)", "7.43 m (scale = 0.01)",
+                             "18.9 m (scale = 0.0254)", "--set mesh.scale=0.001"})
         EXPECT_NE(large.find(part), std::string::npos) << part << " in: " << large;
     const std::string tiny = units_hint(5e-4);
     EXPECT_NE(tiny.find("0.0005 m long"), std::string::npos) << tiny;
