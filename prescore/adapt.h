@@ -96,8 +96,8 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
 // partition() over the large clusters (at least kSliverFraction of the volume or kSliverOfLargest
 // of the largest cluster's; at most kMaxBodies of them); the tets of the others take the piece
 // of the nearest tet (centroid to centroid) of a large one. With adapt, `pieces` is raised to
-// the number of large clusters when it is smaller. When every cluster is
-// large and there are at most `pieces` of them, this is exactly partition().
+// the number of large clusters when it is smaller. When every cluster is large and there are at
+// most `pieces` of them, this is exactly partition().
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
                             bool adapt, AutoChoices& choices);
 

@@ -184,9 +184,6 @@ public:
     // Applies the impulses (N s) of a break at the world point to the constraint's two pieces.
     void apply_kicks(size_t c, const Vec3& pivot, const BreakKicks& kicks);
 
-    // What a break's kicks act through (simulate/joined_response.h): the pieces joined, through
-    // the active joints, to either piece of a constraint that has left the world, and the active
-    // joints among them. `parted`: the two pieces are no longer joined (side 1 holds piece_b's).
     // The fragments the active joints make now: the pieces joined to each other through them
     // (driven pieces included), each fragment's pieces ascending. Found once for all the breaks of
     // a step, after its removals: a break's side past the search's limit is taken from here.
@@ -197,6 +194,9 @@ public:
         size_t size(uint32_t f) const { return first[f + 1] - first[f]; }
     };
     void fragments(Fragments* out) const;
+    // What a break's kicks act through (simulate/joined_response.h): the pieces joined, through
+    // the active joints, to either piece of a constraint that has left the world, and the active
+    // joints among them. `parted`: the two pieces are no longer joined (side 1 holds piece_b's).
     struct JoinedPieces {
         // piece_a's side first; a side within the limit in the order the search reached it, a
         // larger one ascending (its fragment's list).
