@@ -333,6 +333,16 @@ std::string report_page_html(const ReportPageInput& in) {
     out += "<script src=\"report.times.js\"></script>\n<script>" + std::string(kTimesScript) + "</script>\n";
     out += "</div>\n</div>\n";
 
+    if (s["model"].contains("auto")) {
+        out += "<h2>What prescore chose for the mesh</h2>\n<p class=\"muted\">Each choice it made because the shot "
+               "left it open or the mesh needed it, and why (the settings named there change it).</p>\n"
+               "<table id=\"chosen\">\n";
+        for (const json& c : s["model"]["auto"])
+            out += "<tr><th>" + html_escape(c.value("what", std::string())) + "</th><td>" +
+                   html_escape(c.value("why", std::string())) + "</td></tr>\n";
+        out += "</table>\n";
+    }
+
     out += "<h2>Files</h2>\n<table id=\"files\">\n";
     for (const auto& [what, name] : files.items()) {
         const std::string n = name.get<std::string>();

@@ -500,6 +500,9 @@ private:
                       {"constraints", m.constraints.size()},
                       {"tets", m.mesh.tets.size()},
                       {"collision_parts", parts}};
+        // What prescore chose for the mesh, and why (the model's settings keep it).
+        const json made_with = json::parse(m.settings_json, nullptr, false);
+        if (made_with.is_object() && made_with.contains("auto")) s["model"]["auto"] = made_with["auto"];
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
@@ -551,6 +554,11 @@ std::string format_run_summary(const RunResult& r) {
         const json& sim = r.summary["simulation"];
         out += fmt::format("model:    {} pieces, {} constraints, {} tets, {} collision parts\n", m["pieces"].get<size_t>(),
                            m["constraints"].get<size_t>(), m["tets"].get<size_t>(), m["collision_parts"].get<size_t>());
+        if (m.contains("auto")) {
+            std::string chosen;
+            for (const json& c : m["auto"]) chosen += (chosen.empty() ? "" : "; ") + c.value("what", std::string());
+            out += fmt::format("chosen:   {} (why: report.html, summary.json)\n", chosen);
+        }
         out += fmt::format("fracture: {} breaks -> {} fragments; {:.4g} J stored at the breaks, {:.4g} J injected "
                            "(alpha {:g}); peak piece speed {:.3g} m/s{}\n",
                            sim["breaks"].get<size_t>(), sim["fragments"].get<size_t>(), sim["stored_energy_J"].get<double>(),

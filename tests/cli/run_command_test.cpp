@@ -235,6 +235,16 @@ TEST(RunCommand, AMeshFileRunsTheDefaultShotOnIt) {
         EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
     const std::string log = slurp(out + "/run.log");
     EXPECT_NE(log.find("auto: size 0.3 m"), std::string::npos) << log;
+    // What prescore chose is in the summary (JSON and the closing lines) and on the page, with why.
+    const nlohmann::json summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+    ASSERT_TRUE(summary["model"].contains("auto")) << summary.dump(1);
+    const std::string what = summary["model"]["auto"][0]["what"], why = summary["model"]["auto"][0]["why"];
+    EXPECT_EQ(what.rfind("size 0.3 m", 0), 0u) << what;
+    EXPECT_NE(why.find("the file has no units"), std::string::npos) << why;
+    EXPECT_NE(r.out.find("chosen:   size 0.3 m"), std::string::npos) << r.out;
+    const std::string page = slurp(out + "/report.html");
+    EXPECT_NE(page.find("<table id=\"chosen\">\n<tr><th>size 0.3 m"), std::string::npos);
+    EXPECT_NE(page.find("the file has no units"), std::string::npos);
     auto info = run_shatter({"info", out + "/cube.model"});
     ASSERT_EQ(info.exit_code, 0) << info.err;
     EXPECT_NE(info.out.find("29.7 kg"), std::string::npos) << info.out;
