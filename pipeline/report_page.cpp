@@ -333,13 +333,15 @@ std::string report_page_html(const ReportPageInput& in) {
     out += "<script src=\"report.times.js\"></script>\n<script>" + std::string(kTimesScript) + "</script>\n";
     out += "</div>\n</div>\n";
 
-    if (s["model"].contains("auto")) {
-        out += "<h2>What prescore chose for the mesh</h2>\n<p class=\"muted\">Each choice it made because the shot "
-               "left it open or the mesh needed it, and why (the settings named there change it).</p>\n"
+    if (s["model"].contains("auto") || s["simulation"].contains("auto")) {
+        out += "<h2>What was chosen for the mesh</h2>\n<p class=\"muted\">Each choice prescore and simulate made "
+               "because the shot left it open or the mesh needed it, and why (the settings named there change it).</p>\n"
                "<table id=\"chosen\">\n";
-        for (const json& c : s["model"]["auto"])
-            out += "<tr><th>" + html_escape(c.value("what", std::string())) + "</th><td>" +
-                   html_escape(c.value("why", std::string())) + "</td></tr>\n";
+        for (const char* stage : {"model", "simulation"})
+            for (const json& c : s[stage].value("auto", json::array()))
+                out += fmt::format("<tr><td class=\"muted\">{}</td><th>{}</th><td>{}</td></tr>\n",
+                                   stage == std::string("model") ? "prescore" : "simulate",
+                                   html_escape(c.value("what", std::string())), html_escape(c.value("why", std::string())));
         out += "</table>\n";
     }
 

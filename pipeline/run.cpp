@@ -506,6 +506,9 @@ private:
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
+        // What simulate chose (joints, a stiffness raised), and why (the trajectory's settings keep it).
+        const json ran_with = json::parse(trajectory().settings_json, nullptr, false);
+        if (ran_with.is_object() && ran_with.contains("auto")) s["simulation"]["auto"] = ran_with["auto"];
         s["instability"] = instability();
         json files = json::object();
         for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".instability.json", ".mp4",
@@ -554,11 +557,11 @@ std::string format_run_summary(const RunResult& r) {
         const json& sim = r.summary["simulation"];
         out += fmt::format("model:    {} pieces, {} constraints, {} tets, {} collision parts\n", m["pieces"].get<size_t>(),
                            m["constraints"].get<size_t>(), m["tets"].get<size_t>(), m["collision_parts"].get<size_t>());
-        if (m.contains("auto")) {
-            std::string chosen;
-            for (const json& c : m["auto"]) chosen += (chosen.empty() ? "" : "; ") + c.value("what", std::string());
-            out += fmt::format("chosen:   {} (why: report.html, summary.json)\n", chosen);
-        }
+        std::string chosen;
+        for (const json* list : {&m, &sim})
+            if (list->contains("auto"))
+                for (const json& c : (*list)["auto"]) chosen += (chosen.empty() ? "" : "; ") + c.value("what", std::string());
+        if (!chosen.empty()) out += fmt::format("chosen:   {} (why: report.html, summary.json)\n", chosen);
         out += fmt::format("fracture: {} breaks -> {} fragments; {:.4g} J stored at the breaks, {:.4g} J injected "
                            "(alpha {:g}); peak piece speed {:.3g} m/s{}\n",
                            sim["breaks"].get<size_t>(), sim["fragments"].get<size_t>(), sim["stored_energy_J"].get<double>(),

@@ -387,13 +387,16 @@ private:
     bool block_fine_ = false;
 };
 
-std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model) {
+// `chosen`: what simulate chose by itself ({"what", "why"} each), kept under "auto" when any.
+std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model,
+                                const nlohmann::ordered_json& chosen) {
     nlohmann::ordered_json j;
     j["model"] = {{"fnv1a64", model_id}, {"pieces", model.pieces.size()}};
     j["scene"] = to_json(in.scene);
     j["object"] = to_json(in.object);
     j["material"] = to_json(in.material);
     j["simulate"] = to_json(in.simulate);
+    if (!chosen.empty()) j["auto"] = chosen;
     return j.dump();
 }
 
@@ -563,16 +566,22 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // Direct joints solve every joint row exactly whatever its CFM: no stiffness is too soft for
     // the step (docs/physics.md section 5b), so neither stiffen nor the CFM check applies.
     const bool direct = solves_joints_directly(model, in.simulate);
+    nlohmann::ordered_json chosen = nlohmann::ordered_json::array();  // logged, and kept in the trajectory
+    const auto choose = [&](const std::string& what, const std::string& why) {
+        spdlog::info("auto: {} ({})", what, why);
+        chosen.push_back({{"what", what}, {"why", why}});
+    };
     if (in.simulate.joints == JointSolve::Auto && !model.constraints.empty()) {
         uint32_t heavy = 0, light = 0, island_heavy = 0, island_light = 0;
         const double ratio = largest_joined_mass_ratio(model, &heavy, &light);
         const double island = largest_island_mass_ratio(model, &island_heavy, &island_light);
         if (direct || (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio)) {
-            spdlog::info("auto: [simulate] joints = \"{}\" (the largest mass ratio between joined pieces is {:.3g}, "
-                         "piece {} over piece {}, direct above {:g}; within an island of joined pieces {:.3g}, piece {} "
-                         "over piece {}, direct above {:g})",
-                         direct ? "direct" : "iterative", ratio, heavy, light, kIterativeMassRatio, island, island_heavy,
-                         island_light, kIterativeIslandRatio);
+            choose(fmt::format("[simulate] joints = \"{}\"", direct ? "direct" : "iterative"),
+                   fmt::format("the largest mass ratio between joined pieces is {:.3g}, piece {} over piece {}, direct "
+                               "above {:g}; within an island of joined pieces {:.3g}, piece {} over piece {}, direct "
+                               "above {:g}",
+                               ratio, heavy, light, kIterativeMassRatio, island, island_heavy, island_light,
+                               kIterativeIslandRatio));
         } else {
             const bool joined = ratio > kIterativeMassRatio;
             spdlog::warn("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to {}), but piece "
@@ -595,9 +604,10 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                                             model, in, &first);
         if (need > 0) {
             const double stiffness = 1.05 * need;
-            spdlog::info("auto: {} {:.4g} -> {:.4g} {} (constraint {} would need CFM above {:g} at h = {:.4g} s; "
-                         "[material] stiffen = true)", stiffness_number_key(in.material), stiffness_number(in.material),
-                         stiffness, stiffness_number_unit(in.material), first, in.simulate.max_cfm, h);
+            choose(fmt::format("{} {:.4g} -> {:.4g} {}", stiffness_number_key(in.material), stiffness_number(in.material),
+                               stiffness, stiffness_number_unit(in.material)),
+                   fmt::format("constraint {} would need CFM above {:g} at h = {:.4g} s; [material] stiffen = true", first,
+                               in.simulate.max_cfm, h));
             set_stiffness_number(in.material, stiffness);
         }
     }
@@ -615,7 +625,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     SimulationResult out;
     Trajectory& t = out.trajectory;
     t.producer = producer_string();
-    t.settings_json = trajectory_settings(in, model_id, model);
+    t.settings_json = trajectory_settings(in, model_id, model, chosen);
     t.fps = in.simulate.fps;
     t.pieces = world.pieces();
     t.props = world.props();

@@ -242,8 +242,13 @@ TEST(RunCommand, AMeshFileRunsTheDefaultShotOnIt) {
     EXPECT_EQ(what.rfind("size 0.3 m", 0), 0u) << what;
     EXPECT_NE(why.find("the file has no units"), std::string::npos) << why;
     EXPECT_NE(r.out.find("chosen:   size 0.3 m"), std::string::npos) << r.out;
+    // And what simulate chose: the joints' solve, by the pieces' mass ratios.
+    ASSERT_TRUE(summary["simulation"].contains("auto")) << summary.dump(1);
+    const std::string joints = summary["simulation"]["auto"][0]["what"];
+    EXPECT_EQ(joints.rfind("[simulate] joints = ", 0), 0u) << joints;
+    EXPECT_NE(r.out.find("; " + joints), std::string::npos) << r.out;
     const std::string page = slurp(out + "/report.html");
-    EXPECT_NE(page.find("<table id=\"chosen\">\n<tr><th>size 0.3 m"), std::string::npos);
+    EXPECT_NE(page.find("<table id=\"chosen\">\n<tr><td class=\"muted\">prescore</td><th>size 0.3 m"), std::string::npos);
     EXPECT_NE(page.find("the file has no units"), std::string::npos);
     auto info = run_shatter({"info", out + "/cube.model"});
     ASSERT_EQ(info.exit_code, 0) << info.err;

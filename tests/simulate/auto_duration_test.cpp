@@ -157,7 +157,9 @@ TEST(AutoDuration, WithoutAutoTheDurationIsKept) {
     in.simulate.duration = 0.5;
     const SimulationResult r = simulate(plate(), in, "test");
     EXPECT_EQ(r.trajectory.frames(), 16u);
-    EXPECT_EQ(r.trajectory.settings_json.find("auto"), std::string::npos);
+    EXPECT_EQ(r.trajectory.settings_json.find("\"duration\":\"auto\""), std::string::npos) << r.trajectory.settings_json;
+    EXPECT_EQ(r.trajectory.settings_json.find("max_duration"), std::string::npos) << r.trajectory.settings_json;
+    EXPECT_NE(r.trajectory.settings_json.find("\"duration\":0.5"), std::string::npos) << r.trajectory.settings_json;
 }
 
 }  // namespace
