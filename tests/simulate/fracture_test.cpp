@@ -422,8 +422,8 @@ TEST(Fracture, AHingeThatOpensTheCrackHolds) {
 }
 
 // A row of 30 boxes, each joined to the next, the last also to box 6; the joint between boxes 5
-// and 6 and one of two joints between boxes 2 and 3 and between 20 and 21 taken out. What a break's kicks act through then follows from
-// the row: two fragments, of 6 and 24 boxes.
+// and 6, and one of the two joints between boxes 2 and 3 and between 20 and 21, taken out. What
+// a break's kicks act through then follows from the row: two fragments, of 6 and 24 boxes.
 TEST(Fracture, ABreaksSidesAreItsPiecesFragmentsAndOnePastTheLimitMovesWhole) {
     BoxModelBuilder b;
     constexpr int kBoxes = 30;
