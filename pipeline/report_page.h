@@ -1,6 +1,6 @@
 // OUT/report.html, the page of one `shatter run`: the movie, the contact sheet, the energy plot,
 // the energy books (stored, injected, alpha), the summary (pieces, constraints, breaks,
-// fragments), the time of each stage, what prescore chose for the mesh and why, the shot's
+// fragments), the time of each stage, what prescore and simulate chose and why, the shot's
 // settings, a link to every file, and a 3D view of NAME.glb with its animation (orbit, play,
 // scrub).
 //
