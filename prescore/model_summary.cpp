@@ -114,6 +114,9 @@ std::string model_summary_text(const nlohmann::ordered_json& j) {
         out += fmt::format("look          the input's: {} materials, {} textured{}\n", j["materials"].size(), textured,
                            textures);
     }
+    if (j.contains("settings") && j["settings"].is_object())
+        for (const auto& c : j["settings"].value("auto", nlohmann::ordered_json::array()))
+            out += fmt::format("chosen        {}; why: {}\n", c.value("what", std::string()), c.value("why", std::string()));
     out += "\npiece   tets   volume(m^3)    mass(kg)  parts  fracture-tris  connected\n";
     for (const auto& p : j["per_piece"])
         out += fmt::format("{:5} {:6} {:13.6g} {:11.6g} {:6} {:14} {:>10}\n", p["piece"].get<int>(),

@@ -253,6 +253,10 @@ TEST(RunCommand, AMeshFileRunsTheDefaultShotOnIt) {
     auto info = run_shatter({"info", out + "/cube.model"});
     ASSERT_EQ(info.exit_code, 0) << info.err;
     EXPECT_NE(info.out.find("29.7 kg"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("chosen        size 0.3 m"), std::string::npos) << info.out;
+    info = run_shatter({"info", out + "/cube.traj"});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("chosen        " + joints), std::string::npos) << info.out;
     // A mesh that is not there is the same clear error as from a shot.
     r = run_shatter({"run", dir.file("nowhere.stl"), "-o", dir.file("a")});
     EXPECT_EQ(r.exit_code, 3);
