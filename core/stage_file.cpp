@@ -2,6 +2,8 @@
 
 #include <cassert>
 
+#include <fmt/format.h>
+
 #include "core/binary_io.h"
 #include "core/error.h"
 #include "core/version.h"
@@ -63,6 +65,18 @@ StageFile unpack_stage_file(std::string_view bytes, const std::string& source, s
     f.payload = r.bytes(size);
     if (fnv1a64(f.payload) != sum) r.fail("checksum mismatch: the " + k + " payload is damaged");
     return f;
+}
+
+nlohmann::ordered_json stage_choices(const nlohmann::ordered_json& settings) {
+    if (!settings.is_object()) return nlohmann::ordered_json::array();
+    return settings.value("auto", nlohmann::ordered_json::array());
+}
+
+std::string stage_choices_text(const nlohmann::ordered_json& settings) {
+    std::string out;
+    for (const auto& c : stage_choices(settings))
+        out += fmt::format("chosen        {}; why: {}\n", c.value("what", std::string()), c.value("why", std::string()));
+    return out;
 }
 
 }  // namespace shatter

@@ -15,6 +15,8 @@
 #include <string>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 namespace shatter {
 
 constexpr size_t kMagicSize = 8;
@@ -46,5 +48,11 @@ std::string stage_file_magic(std::string_view bytes);
 
 // "shatter <version>": the producer written into every stage file.
 std::string producer_string();
+
+// What a stage chose by itself, kept in its file's settings (parsed) under "auto": prescore's in
+// a model, simulate's in a trajectory, {"what", "why"} each; an empty array when none.
+nlohmann::ordered_json stage_choices(const nlohmann::ordered_json& settings);
+// Those choices as `shatter info` lists them, a line each: "chosen        WHAT; why: WHY".
+std::string stage_choices_text(const nlohmann::ordered_json& settings);
 
 }  // namespace shatter

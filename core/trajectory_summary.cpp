@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "core/stage_file.h"
+
 namespace shatter {
 
 namespace {
@@ -63,9 +65,7 @@ std::string trajectory_summary_text(const ojson& j) {
     out += fmt::format("complete      {}\n", j["complete"].get<bool>() ? "yes" : "NO: the simulation stopped early");
     const ojson& s = j["settings"];
     if (s.is_object() && s.contains("simulate")) out += fmt::format("simulate      {}\n", s["simulate"].dump());
-    if (s.is_object())
-        for (const auto& c : s.value("auto", ojson::array()))
-            out += fmt::format("chosen        {}; why: {}\n", c.value("what", std::string()), c.value("why", std::string()));
+    out += stage_choices_text(s);
     out += fmt::format("motion        longest path {:.6g} m, fastest {:.6g} m/s\n",
                        j["longest_piece_path_m"].get<double>(), j["max_piece_speed_m_s"].get<double>());
     out += "\npiece     path(m)  max speed(m/s)  final position (m)\n";

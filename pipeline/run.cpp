@@ -18,6 +18,7 @@
 #include "core/generate_settings.h"
 #include "core/model_io.h"
 #include "core/shot.h"
+#include "core/stage_file.h"
 #include "core/trajectory.h"
 #include "pipeline/encode.h"
 #include "pipeline/export_glb.h"
@@ -80,53 +81,52 @@ std::string default_output_dir(const std::string& shot) {
 
 namespace {
 
-// Adds run.log in the output folder to the logger for the lifetime of a run.
-class LogFile {
+// A sink added to the logger for the lifetime of a run.
+class AttachedSink {
 public:
-    explicit LogFile(const std::string& path) {
-        try {
-            sink_ = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false);
-            sink_->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
-            spdlog::default_logger()->sinks().push_back(sink_);
-        } catch (const spdlog::spdlog_ex& e) {
-            throw_io_error(path, e.what());
-        }
+    explicit AttachedSink(std::shared_ptr<spdlog::sinks::sink> sink) : sink_(std::move(sink)) {
+        spdlog::default_logger()->sinks().push_back(sink_);
     }
-    ~LogFile() {
+    ~AttachedSink() {
         auto& sinks = spdlog::default_logger()->sinks();
         sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
     }
+    AttachedSink(const AttachedSink&) = delete;
+    AttachedSink& operator=(const AttachedSink&) = delete;
 
 private:
-    std::shared_ptr<spdlog::sinks::basic_file_sink_mt> sink_;
+    std::shared_ptr<spdlog::sinks::sink> sink_;
 };
 
-// Keeps the run's warnings (each once, in order) for its summary, for the lifetime of a run.
-class WarningsKept {
-public:
-    WarningsKept() : sink_(std::make_shared<Sink>()) { spdlog::default_logger()->sinks().push_back(sink_); }
-    ~WarningsKept() {
-        auto& sinks = spdlog::default_logger()->sinks();
-        sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
+// run.log in the output folder, every message with its time.
+std::shared_ptr<spdlog::sinks::sink> run_log_sink(const std::string& path) {
+    try {
+        auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false);
+        sink->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
+        return sink;
+    } catch (const spdlog::spdlog_ex& e) {
+        throw_io_error(path, e.what());
     }
+}
+
+// Keeps the run's warnings (each once, in order) for its summary.
+class WarningsKept : public spdlog::sinks::base_sink<std::mutex> {
+public:
     std::vector<std::string> taken() {
-        std::lock_guard<std::mutex> lock(sink_->kept_mutex);
-        return std::move(sink_->kept);
+        std::lock_guard<std::mutex> lock(mutex_);
+        return std::move(kept_);
     }
 
+protected:
+    void sink_it_(const spdlog::details::log_msg& msg) override {  // under mutex_
+        if (msg.level != spdlog::level::warn) return;  // errors end the run and are its summary's
+        std::string text(msg.payload.data(), msg.payload.size());
+        if (std::find(kept_.begin(), kept_.end(), text) == kept_.end()) kept_.push_back(std::move(text));
+    }
+    void flush_() override {}
+
 private:
-    struct Sink : spdlog::sinks::base_sink<std::mutex> {
-        std::mutex kept_mutex;
-        std::vector<std::string> kept;
-        void sink_it_(const spdlog::details::log_msg& msg) override {
-            if (msg.level != spdlog::level::warn) return;  // errors end the run and are its summary's
-            std::string text(msg.payload.data(), msg.payload.size());
-            std::lock_guard<std::mutex> lock(kept_mutex);
-            if (std::find(kept.begin(), kept.end(), text) == kept.end()) kept.push_back(std::move(text));
-        }
-        void flush_() override {}
-    };
-    std::shared_ptr<Sink> sink_;
+    std::vector<std::string> kept_;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -154,14 +154,15 @@ public:
         if (!shot_.mesh.path.empty() && !shot_.generate) file_hash(shot_.mesh.path);
         make_directories(dir_.string());
         if (options_.chunks == 1) remove_stale_temporaries();
-        LogFile log((dir_ / "run.log").string());
-        WarningsKept warnings;
+        AttachedSink log(run_log_sink((dir_ / "run.log").string()));
+        const auto warnings = std::make_shared<WarningsKept>();
+        AttachedSink keep(warnings);
         spdlog::info("run: {} -> {}{}", options_.shot, dir_.string(),
                      options_.overrides.empty() ? "" : fmt::format(" (--set {})", fmt::join(options_.overrides, " ")));
         steps_ = steps();
         for (const StageStep& step : steps_) run_step(step);
         write_report_times(dir_.string(), result_.stages);
-        result_.warnings = warnings.taken();
+        result_.warnings = warnings->taken();
         return std::move(result_);
     }
 
@@ -501,14 +502,14 @@ private:
                       {"tets", m.mesh.tets.size()},
                       {"collision_parts", parts}};
         // What prescore chose for the mesh, and why (the model's settings keep it).
-        const json made_with = json::parse(m.settings_json, nullptr, false);
-        if (made_with.is_object() && made_with.contains("auto")) s["model"]["auto"] = made_with["auto"];
+        if (json chosen = stage_choices(json::parse(m.settings_json, nullptr, false)); !chosen.empty())
+            s["model"]["auto"] = std::move(chosen);
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
         // What simulate chose (joints, a stiffness raised), and why (the trajectory's settings keep it).
-        const json ran_with = json::parse(trajectory().settings_json, nullptr, false);
-        if (ran_with.is_object() && ran_with.contains("auto")) s["simulation"]["auto"] = ran_with["auto"];
+        if (json chosen = stage_choices(json::parse(trajectory().settings_json, nullptr, false)); !chosen.empty())
+            s["simulation"]["auto"] = std::move(chosen);
         s["instability"] = instability();
         json files = json::object();
         for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".instability.json", ".mp4",

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/stage_file.h"
 #include "prescore/tet_topology.h"
 
 namespace shatter {
@@ -114,9 +115,7 @@ std::string model_summary_text(const nlohmann::ordered_json& j) {
         out += fmt::format("look          the input's: {} materials, {} textured{}\n", j["materials"].size(), textured,
                            textures);
     }
-    if (j.contains("settings") && j["settings"].is_object())
-        for (const auto& c : j["settings"].value("auto", nlohmann::ordered_json::array()))
-            out += fmt::format("chosen        {}; why: {}\n", c.value("what", std::string()), c.value("why", std::string()));
+    if (j.contains("settings")) out += stage_choices_text(j["settings"]);
     out += "\npiece   tets   volume(m^3)    mass(kg)  parts  fracture-tris  connected\n";
     for (const auto& p : j["per_piece"])
         out += fmt::format("{:5} {:6} {:13.6g} {:11.6g} {:6} {:14} {:>10}\n", p["piece"].get<int>(),
