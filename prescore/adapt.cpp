@@ -234,6 +234,7 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
                                             "resolution {:g})", diagonal, r),
                           "give a solid mesh, or raise --resolution");
     fit.resolution = r;
+    fit.thickened = true;
     fit.tets = std::move(*tets);  // what is still apart becomes slivers or bodies (partition_adapted)
     return fit;
 }

@@ -83,6 +83,7 @@ struct FittedTets {
     MeshCheck surface_check;     // of that surface (no self-intersection search)
     double resolution = 0;       // the resolution used (cells per diagonal)
     bool wrapped = false;        // the surface is an alpha wrap of the input
+    bool thickened = false;      // ... with walls given a thickness (step 3 below)
 };
 
 // Fills `surface` (already checked: `surface_check`; `wrapped` when it is the input's wrap) with

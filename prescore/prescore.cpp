@@ -1,5 +1,6 @@
 #include "prescore/prescore.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -173,8 +174,12 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 
 // Render surfaces (prescore/render_surface.h) for every piece, from `surface` (what the tets were
 // made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
-// pieces keep their tet surfaces (a choice, noted). One log line says what was done.
-void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, PrescoreReport& report) {
+// pieces keep their tet surfaces (a choice, noted). `own`, when given (the input, which
+// `surface` wraps), gives the outer faces instead (use_input_faces; reduced to
+// kRenderSurfaceTriangles by meshoptimizer first), drawn from both sides unless `own_closed`.
+// One log line says what was done.
+void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
+                         bool own_closed, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
     const std::optional<TriangleMesh> reduced = first_reduction(surface);
@@ -213,29 +218,38 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
     // child sends back the simplified surface's triangle count (8 bytes) and, within the budget,
     // the model with its render surfaces (the model format carries them).
     Model cut_model;
-    uint64_t cut_triangles = 0;
+    // The child's reply: the simplified surface's triangle count, what use_input_faces did (its
+    // four counts, and the input triangles it was given), then the model.
+    std::array<uint64_t, 6> head{};
     try {
-        // CGAL's simplification: ~20 us per triangle it removes (render_surface.h).
+        // CGAL's simplification: ~20 us per triangle it removes (render_surface.h); meshoptimizer's
+        // ~1 us per input triangle.
         const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
-                                2e-5 * double(from->triangles.size() - at_most);
+                                2e-5 * double(from->triangles.size() - at_most) +
+                                (own ? 1e-6 * double(own->triangles.size()) : 0.0);
         const std::string bytes = run_isolated(
             [&] {
                 const TriangleMesh cut = simplify_surface(*from, kRenderSurfaceTriangles);
-                std::string out(sizeof(uint64_t), '\0');
-                const uint64_t n = cut.triangles.size();
-                std::memcpy(out.data(), &n, sizeof n);
-                if (double(model.pieces.size()) * double(n) > kRenderSurfaceWork) return out;
+                std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
+                const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
+                if (double(model.pieces.size()) * double(h[0]) > kRenderSurfaceWork) return reply();
                 Model m = model;
                 std::vector<RenderSurface> found =
                     render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
+                if (own) {
+                    const TriangleMesh drawn = reduce_surface(*own, kRenderSurfaceTriangles);
+                    const InputFacesReport r =
+                        use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed);
+                    h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves, h[5] = drawn.triangles.size();
+                }
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
-                return out + encode_model(m);
+                return reply() + encode_model(m);
             },
             deadline);
-        if (bytes.size() < sizeof cut_triangles) throw IsolatedFailure("no reply");
-        std::memcpy(&cut_triangles, bytes.data(), sizeof cut_triangles);
-        if (over_budget(cut_triangles)) return;
-        cut_model = decode_model(bytes.substr(sizeof cut_triangles), "render surfaces");
+        if (bytes.size() < sizeof head) throw IsolatedFailure("no reply");
+        std::memcpy(head.data(), bytes.data(), sizeof head);
+        if (over_budget(head[0])) return;
+        cut_model = decode_model(bytes.substr(sizeof head), "render surfaces");
     } catch (const IsolatedFailure& f) {
         report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
                             fmt::format("CGAL's simplification or corefinement {} ({}); [prescore] render_surface = "
@@ -249,6 +263,18 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
         report.render_triangles += cut_model.pieces[p].render->triangles.size();
         model.pieces[p].render = std::move(cut_model.pieces[p].render);
         ++report.render_surfaces;
+    }
+    const uint64_t cut_triangles = head[0];
+    if (own && head[1] > 0) {
+        report.choices.note(
+            fmt::format("render surfaces: the input's own triangles outside ({} pieces), the wrap's fracture faces "
+                        "inside", head[1]),
+            "the tets were made from an alpha wrap of the input, which bridges gaps narrower than its alpha; "
+            "[prescore] render_surface = false draws the tet surfaces instead");
+        spdlog::info("render surfaces: {} of the input's triangles ({}) placed as {} outer faces ({} split in four){}, "
+                     "{}; {} pieces without one keep the wrap's",
+                     head[5], own->triangles.size(), head[4], head[3], own_closed ? "" : ", each drawn from both sides",
+                     head[1] == 1 ? "1 piece" : fmt::format("{} pieces", head[1]), head[2]);
     }
     const std::string simplified =
         cut_triangles < surface.triangles.size() ? fmt::format(", simplified from {}", surface.triangles.size()) : "";
@@ -349,7 +375,11 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
     timer.lap("pieces");
     if (settings.render_surface) {
-        add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, report);
+        // An alpha wrap made for the tets alone (not one that gave thin walls a thickness) is not
+        // what the user modelled: the outer faces come from the input itself.
+        const bool own = fit.wrapped && !fit.thickened;
+        add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, own ? &input : nullptr,
+                            report.input.closed() && report.input.volume > 0, report);
         timer.lap("render surfaces");
         if (report.render_surfaces > 0) {
             add_appearance(model, mesh_settings.path, report.scale);

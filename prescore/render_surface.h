@@ -10,7 +10,9 @@
 //            sharper than `crease_degrees` stay sharp); the cell's faces inside the input are
 //            the piece's fracture and cavity faces, flat, with the cell face's kind;
 //   fallback a piece whose cell does not bound a volume, self-intersects, or whose cut fails
-//            or comes out empty keeps its tet surface (flat normals); counted and logged.
+//            or comes out empty keeps its tet surface (flat normals); counted and logged;
+//   input    when the surface cut is an alpha wrap of the input, the outer faces are then
+//            replaced by the input's own triangles (use_input_faces, below).
 //
 // The margin must exceed the largest distance from the input to the tet boundary, or the
 // input's parts beyond it are lost (the pushed cell's own faces then show there, flat, as
@@ -80,6 +82,32 @@ struct RenderSurfaceSettings {
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
                                            const RenderSurfaceSettings& settings,
                                            const TriangleMesh* retry = nullptr);
+
+// An input that prescore alpha-wrapped for its tets (open, crossing itself, an assembly of
+// parts) and did not thicken: the wrap, cut as above, gives the pieces their fracture and cavity
+// faces, and the input's own triangles their outer faces, so that the pieces show the input's
+// detail instead of the wrap's (which bridges every gap narrower than its alpha and lies `offset`
+// outside the input). Each input triangle goes to the piece whose tet holds its centre (outside
+// every tet: the piece of the nearest boundary face of the tets); one whose corners lie in other
+// pieces than its centre is split in four at its edges' midpoints, down to kInputFaceSplit tet
+// sizes, level by level over all triangles while the parts number at most kInputFaceBudget times
+// the input's triangles (or kRenderSurfaceTriangles, if more), so a piece's outer faces end within
+// about that of its fracture faces. `double_sided` (an input that is not closed, whose triangles
+// may face either way) adds every outer triangle turned over, with its normals negated: both
+// sides are drawn and lit. A piece that no input triangle lies in keeps its surface as it was.
+// Deterministic: input order, one thread.
+inline constexpr double kInputFaceSplit = 0.25;  // smallest split triangle (unit: tet sizes)
+inline constexpr size_t kInputFaceBudget = 3;     // most parts per input triangle (or per kRenderSurfaceTriangles)
+
+struct InputFacesReport {
+    size_t pieces = 0;  // pieces whose outer faces are now the input's
+    size_t kept = 0;    // pieces no input triangle lies in (their surface unchanged)
+    size_t split = 0;   // triangles split in four
+    size_t leaves = 0;  // input triangles and split parts placed (each twice when double-sided)
+};
+
+InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const TriangleMesh& input, const Model& model,
+                                 double tet_size, double crease_degrees, bool double_sided);
 
 // The piece's tet surface as a render surface: flat, three vertices per triangle.
 RenderSurface flat_render_surface(const PieceSurface& surface);

@@ -1,7 +1,8 @@
 // Render surfaces: on a sphere of 5,120 triangles cut into 6 pieces by prescore (which makes them
 // by default; none with render_surface = false), the pieces' render surfaces follow the input (99% of its vertices within 0.05% of the diagonal, normals within
 // 10 degrees on 95% of it), each is closed, none falls back to its tet surface, and two runs
-// give the same surfaces. The tet surfaces miss both by far (the test says by how much).
+// give the same surfaces. The tet surfaces miss both by far (the test says by how much). An
+// input prescore wraps for its tets (open, or crossing itself) is drawn with its own triangles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "meshio/mesh_load.h"
+#include "prescore/adapt.h"
 #include "prescore/mesh_check.h"
 #include "prescore/prescore.h"
 #include "prescore/render_surface.h"
@@ -212,6 +214,117 @@ TEST(RenderSurface, TwoRunsGiveTheSameSurfaces) {
         EXPECT_EQ(a.surfaces[p].triangles, b.surfaces[p].triangles);
         EXPECT_EQ(a.surfaces[p].kinds, b.surfaces[p].kinds);
     }
+}
+
+// An input that prescore alpha-wraps for its tets is drawn with its own triangles
+// (use_input_faces): every outer vertex lies on an input triangle (within the sag of an
+// icosphere of radius r: the wrap's lie `offset` outside it, 1e-3 of the diagonal), the
+// outer faces cover the input's area once (a closed input) or twice (an open one, drawn from both
+// sides), and the fracture faces come from the wrap's cut.
+struct Wrapped {
+    Model model;
+    PrescoreReport report;
+    double input_area = 0;
+};
+
+Wrapped prescore_wrapped(const testing_support::TempDir& dir, const std::string& name, const TriangleMesh& input) {
+    MeshSettings mesh;
+    mesh.path = dir.write(name, obj(input));
+    mesh.scale = 1;
+    PrescoreSettings settings;
+    settings.pieces = 6;
+    settings.resolution = 12;
+    Wrapped w;
+    w.model = prescore(mesh, settings, &w.report);
+    for (const Tri& t : input.triangles)
+        w.input_area += (input.vertices[t[1]] - input.vertices[t[0]]).cross(input.vertices[t[2]] - input.vertices[t[0]]).norm() / 2;
+    return w;
+}
+
+double outer_area(const Model& m) {
+    double area = 0;
+    for (const Piece& p : m.pieces)
+        for (size_t t = 0; t < p.render->triangles.size(); ++t) {
+            if (p.render->kinds[t] != FaceKind::Outer) continue;
+            const Tri& tri = p.render->triangles[t];
+            const auto& v = p.render->vertices;
+            area += (v[tri[1]] - v[tri[0]]).cross(v[tri[2]] - v[tri[0]]).norm() / 2;
+        }
+    return area;
+}
+
+bool chose_input_faces(const PrescoreReport& r) {
+    for (const AutoChoice& c : r.choices.list)
+        if (c.what.find("render surfaces: the input's own triangles") == 0) return true;
+    return false;
+}
+
+TEST(RenderSurface, AnOpenInputWrappedForItsTetsIsDrawnWithItsOwnTrianglesFromBothSides) {
+    testing_support::TempDir dir;
+    // An icosphere of radius 0.1 m without its topmost triangle: open, so prescore wraps it; the
+    // hole (about 7 mm across) is narrower than the wrap's alpha (6.7 mm), so the wrap closes it
+    // and the tets fill the ball (a larger hole makes the sphere a shell, which is thickened).
+    const double r = 0.1;
+    TriangleMesh open = icosphere(4);
+    for (Vec3& v : open.vertices) v *= r;
+    const auto centre_y = [&](const Tri& t) {
+        return (open.vertices[t[0]].y() + open.vertices[t[1]].y() + open.vertices[t[2]].y()) / 3;
+    };
+    const auto top = std::max_element(open.triangles.begin(), open.triangles.end(),
+                                      [&](const Tri& a, const Tri& b) { return centre_y(a) < centre_y(b); });
+    const Tri hole = *top;
+    open.triangles.erase(top);
+    const Wrapped w = prescore_wrapped(dir, "open_sphere.obj", open);
+    EXPECT_TRUE(w.report.repaired);
+    EXPECT_TRUE(chose_input_faces(w.report));
+    ASSERT_EQ(w.report.render_surfaces, w.model.pieces.size());
+    // A level-4 icosphere's triangles lie within r (1 - cos(rho)) of the sphere, rho the angle of
+    // their circumradius (under 0.06 rad).
+    const double sag = r * (1 - std::cos(0.06));
+    size_t fracture = 0, outer_vertices = 0;
+    for (const Piece& p : w.model.pieces) {
+        ASSERT_TRUE(p.render);
+        std::vector<char> outer(p.render->vertices.size(), 0);
+        for (size_t t = 0; t < p.render->triangles.size(); ++t) {
+            fracture += p.render->kinds[t] == FaceKind::Fracture;
+            if (p.render->kinds[t] == FaceKind::Outer)
+                for (uint32_t v : p.render->triangles[t]) outer[v] = 1;
+        }
+        for (size_t v = 0; v < outer.size(); ++v) {
+            if (!outer[v]) continue;
+            ++outer_vertices;
+            const Vec3& x = p.render->vertices[v];
+            // (Render surfaces are stored in single precision.)
+            EXPECT_LE(x.norm(), r * (1 + 1e-6)) << "outside the input, as the wrap is";
+            EXPECT_GE(x.norm(), r - sag);
+            // Seen from the centre, no outer vertex lies within the hole.
+            const Vec3 &a = open.vertices[hole[0]], &b = open.vertices[hole[1]], &c = open.vertices[hole[2]];
+            const bool within = x.dot(a.cross(b)) > 0 && x.dot(b.cross(c)) > 0 && x.dot(c.cross(a)) > 0;
+            EXPECT_FALSE(within) << "an outer face over the hole: the wrap's cap is drawn";
+        }
+    }
+    EXPECT_GT(outer_vertices, open.vertices.size() / 2);
+    EXPECT_GT(fracture, 0u);
+    EXPECT_NEAR(outer_area(w.model), 2 * w.input_area, 1e-6 * w.input_area);
+}
+
+TEST(RenderSurface, AClosedInputThatCrossesItselfIsDrawnWithItsOwnTrianglesOnce) {
+    testing_support::TempDir dir;
+    // Two spheres of radius 0.1 m that overlap: closed, outward, crossing along a circle (more
+    // crossings than prescore meshes as they are), so prescore wraps them.
+    TriangleMesh two = icosphere(3);
+    for (Vec3& v : two.vertices) v *= 0.1;
+    const size_t n = two.vertices.size();
+    for (size_t i = 0; i < n; ++i) two.vertices.push_back(two.vertices[i] + Vec3(0.12, 0, 0));
+    const size_t nt = two.triangles.size();
+    for (size_t t = 0; t < nt; ++t) {
+        const Tri f = two.triangles[t];
+        two.triangles.push_back({f[0] + uint32_t(n), f[1] + uint32_t(n), f[2] + uint32_t(n)});
+    }
+    const Wrapped w = prescore_wrapped(dir, "two_spheres.obj", two);
+    EXPECT_TRUE(w.report.repaired);
+    EXPECT_TRUE(chose_input_faces(w.report));
+    EXPECT_NEAR(outer_area(w.model), w.input_area, 1e-6 * w.input_area);
 }
 
 }  // namespace
