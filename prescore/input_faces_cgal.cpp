@@ -112,7 +112,7 @@ Vec3 unit_or(const Vec3& v, const Vec3& fallback) { return v.norm() > 0 ? Vec3(v
 }  // namespace
 
 InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const TriangleMesh& input, const Model& model,
-                                 double tet_size, double crease_degrees, bool double_sided) {
+                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset) {
     InputFacesReport report;
     if (input.triangles.empty() || model.mesh.tets.empty() || surfaces.size() != model.pieces.size()) return report;
     const PieceLocator locate(model);
@@ -192,11 +192,25 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
             continue;
         }
         const RenderSurface& old = surfaces[p];
+        // The fracture faces' rim (their vertices on the wrap's outer faces) moves in along the
+        // wrap's normal there, under the input.
+        std::map<std::tuple<double, double, double>, Vec3> rim;
+        for (size_t t = 0; t < old.triangles.size(); ++t)
+            if (old.kinds[t] == FaceKind::Outer)
+                for (uint32_t v : old.triangles[t]) {
+                    const Vec3& x = old.vertices[v];
+                    rim.emplace(std::make_tuple(x.x(), x.y(), x.z()), old.normals[v]);
+                }
         for (size_t t = 0; t < old.triangles.size(); ++t) {
             if (old.kinds[t] == FaceKind::Outer) continue;
             const Tri& o = old.triangles[t];
-            b.triangle({old.vertices[o[0]], old.vertices[o[1]], old.vertices[o[2]]},
-                       {old.normals[o[0]], old.normals[o[1]], old.normals[o[2]]}, old.kinds[t]);
+            std::array<Vec3, 3> x;
+            for (int c = 0; c < 3; ++c) {
+                x[c] = old.vertices[o[c]];
+                const auto it = rim.find(std::make_tuple(x[c].x(), x[c].y(), x[c].z()));
+                if (it != rim.end()) x[c] -= rim_inset * it->second;
+            }
+            b.triangle(x, {old.normals[o[0]], old.normals[o[1]], old.normals[o[2]]}, old.kinds[t]);
         }
         b.rs.fell_back = old.fell_back;
         surfaces[p] = std::move(b.rs);

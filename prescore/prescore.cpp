@@ -176,10 +176,11 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
 // pieces keep their tet surfaces (a choice, noted). `own`, when given (the input, which
 // `surface` wraps), gives the outer faces instead (use_input_faces; reduced to
-// kRenderSurfaceTriangles by meshoptimizer first), drawn from both sides unless `own_closed`.
+// kRenderSurfaceTriangles by meshoptimizer first), drawn from both sides unless `own_closed`, the
+// fracture faces' rims moved `rim_inset` in.
 // One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
-                         bool own_closed, PrescoreReport& report) {
+                         bool own_closed, double rim_inset, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
     const std::optional<TriangleMesh> reduced = first_reduction(surface);
@@ -239,7 +240,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                 if (own) {
                     const TriangleMesh drawn = reduce_surface(*own, kRenderSurfaceTriangles);
                     const InputFacesReport r =
-                        use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed);
+                        use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed, rim_inset);
                     h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves, h[5] = drawn.triangles.size();
                 }
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
@@ -379,7 +380,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         // what the user modelled: the outer faces come from the input itself.
         const bool own = fit.wrapped && !fit.thickened;
         add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, own ? &input : nullptr,
-                            report.input.closed() && report.input.volume > 0, report);
+                            report.input.closed() && report.input.volume > 0,
+                            kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal, report);
         timer.lap("render surfaces");
         if (report.render_surfaces > 0) {
             add_appearance(model, mesh_settings.path, report.scale);

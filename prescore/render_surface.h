@@ -94,10 +94,14 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
 // the input's triangles (or kRenderSurfaceTriangles, if more), so a piece's outer faces end within
 // about that of its fracture faces. `double_sided` (an input that is not closed, whose triangles
 // may face either way) adds every outer triangle turned over, with its normals negated: both
-// sides are drawn and lit. A piece that no input triangle lies in keeps its surface as it was.
-// Deterministic: input order, one thread.
+// sides are drawn and lit. The fracture and cavity faces end on the wrap, outside the input: the
+// vertices they share with the wrap's outer faces move `rim_inset` (unit: m; a few times the
+// wrap's offset) in along the wrap's normal, so that the intact object shows no seams. A piece
+// that no input triangle lies in keeps its surface as it was. Deterministic: input order, one
+// thread.
 inline constexpr double kInputFaceSplit = 0.25;  // smallest split triangle (unit: tet sizes)
 inline constexpr size_t kInputFaceBudget = 3;     // most parts per input triangle (or per kRenderSurfaceTriangles)
+inline constexpr double kInputFaceRimInset = 3;   // how far the fracture faces' rims move in (unit: wrap offsets)
 
 struct InputFacesReport {
     size_t pieces = 0;  // pieces whose outer faces are now the input's
@@ -107,7 +111,7 @@ struct InputFacesReport {
 };
 
 InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const TriangleMesh& input, const Model& model,
-                                 double tet_size, double crease_degrees, bool double_sided);
+                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset);
 
 // The piece's tet surface as a render surface: flat, three vertices per triangle.
 RenderSurface flat_render_surface(const PieceSurface& surface);

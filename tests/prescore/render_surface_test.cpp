@@ -220,7 +220,7 @@ TEST(RenderSurface, TwoRunsGiveTheSameSurfaces) {
 // (use_input_faces): every outer vertex lies on an input triangle (within the sag of an
 // icosphere of radius r: the wrap's lie `offset` outside it, 1e-3 of the diagonal), the
 // outer faces cover the input's area once (a closed input) or twice (an open one, drawn from both
-// sides), and the fracture faces come from the wrap's cut.
+// sides), and the fracture faces come from the wrap's cut, their rims moved in under the input.
 struct Wrapped {
     Model model;
     PrescoreReport report;
@@ -289,6 +289,8 @@ TEST(RenderSurface, AnOpenInputWrappedForItsTetsIsDrawnWithItsOwnTrianglesFromBo
             fracture += p.render->kinds[t] == FaceKind::Fracture;
             if (p.render->kinds[t] == FaceKind::Outer)
                 for (uint32_t v : p.render->triangles[t]) outer[v] = 1;
+            else  // the fracture faces end under the input: the intact ball shows no seams
+                for (uint32_t v : p.render->triangles[t]) EXPECT_LT(p.render->vertices[v].norm(), r);
         }
         for (size_t v = 0; v < outer.size(); ++v) {
             if (!outer[v]) continue;
