@@ -239,9 +239,12 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                     render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
                 if (own) {
                     const TriangleMesh drawn = reduce_surface(*own, kRenderSurfaceTriangles);
-                    const InputFacesReport r =
-                        use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed, rim_inset);
-                    h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves, h[5] = drawn.triangles.size();
+                    h[5] = drawn.triangles.size();
+                    if (h[5] <= kInputFaceMostTriangles) {
+                        const InputFacesReport r =
+                            use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed, rim_inset);
+                        h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves;
+                    }
                 }
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
                 return reply() + encode_model(m);
@@ -266,6 +269,12 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
         ++report.render_surfaces;
     }
     const uint64_t cut_triangles = head[0];
+    if (own && head[5] > kInputFaceMostTriangles)
+        report.choices.note("render surfaces: the wrap's outer faces",
+                            fmt::format("the input has {} triangles after meshoptimizer's simplification (which "
+                                        "does not move a vertex on a border or on an edge of three triangles), "
+                                        "more than the {} drawn as its own",
+                                        head[5], kInputFaceMostTriangles));
     if (own && head[1] > 0) {
         report.choices.note(
             fmt::format("render surfaces: the input's own triangles outside ({} pieces), the wrap's fracture faces "

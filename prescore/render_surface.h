@@ -102,6 +102,10 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
 inline constexpr double kInputFaceSplit = 0.25;  // smallest split triangle (unit: tet sizes)
 inline constexpr size_t kInputFaceBudget = 3;     // most parts per input triangle (or per kRenderSurfaceTriangles)
 inline constexpr double kInputFaceRimInset = 3;   // how far the fracture faces' rims move in (unit: wrap offsets)
+// An input still over this many triangles after reduce_surface (which moves no vertex on a border
+// or on an edge of three triangles: an assembly of many open parts may stay large) keeps the
+// wrap's outer faces, so that render's cost stays bounded (prescore.cpp).
+inline constexpr size_t kInputFaceMostTriangles = 60000;
 
 struct InputFacesReport {
     size_t pieces = 0;  // pieces whose outer faces are now the input's

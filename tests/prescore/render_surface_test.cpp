@@ -329,5 +329,37 @@ TEST(RenderSurface, AClosedInputThatCrossesItselfIsDrawnWithItsOwnTrianglesOnce)
     EXPECT_NEAR(outer_area(w.model), w.input_area, 1e-6 * w.input_area);
 }
 
+// An input that stays over kInputFaceMostTriangles after meshoptimizer's reduction keeps the
+// wrap's outer faces, a choice said with its reason. Here a sphere of 81,920 triangles with a fin
+// on each of its edges: every edge carries three triangles, so meshoptimizer moves no vertex.
+TEST(RenderSurface, AnInputTooLargeToDrawAsItsOwnKeepsTheWrapsOuterFaces) {
+    testing_support::TempDir dir;
+    TriangleMesh apart = icosphere(6);
+    for (Vec3& v : apart.vertices) v *= 0.1;
+    const size_t faces = apart.triangles.size();
+    std::map<std::pair<uint32_t, uint32_t>, bool> finned;
+    for (size_t t = 0; t < faces; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = apart.triangles[t][size_t(k)], b = apart.triangles[t][size_t(k + 1) % 3];
+            if (!finned.emplace(std::minmax(a, b), true).second) continue;
+            apart.vertices.push_back((apart.vertices[a] + apart.vertices[b]) * 0.505);
+            apart.triangles.push_back({a, b, uint32_t(apart.vertices.size() - 1)});
+        }
+    ASSERT_GT(reduce_surface(apart, kRenderSurfaceTriangles).triangles.size(), kInputFaceMostTriangles);
+    const Wrapped w = prescore_wrapped(dir, "finned.obj", apart);
+    EXPECT_TRUE(w.report.repaired);
+    EXPECT_FALSE(chose_input_faces(w.report));
+    bool said = false;
+    for (const AutoChoice& c : w.report.choices.list) said = said || c.what == "render surfaces: the wrap's outer faces";
+    EXPECT_TRUE(said);
+    ASSERT_EQ(w.report.render_surfaces, w.model.pieces.size());
+    size_t outside = 0;
+    for (const Piece& p : w.model.pieces)
+        for (size_t t = 0; t < p.render->triangles.size(); ++t)
+            if (p.render->kinds[t] == FaceKind::Outer)
+                for (uint32_t v : p.render->triangles[t]) outside += p.render->vertices[v].norm() > 0.1;
+    EXPECT_GT(outside, 0u) << "the wrap lies outside the input";
+}
+
 }  // namespace
 }  // namespace shatter
