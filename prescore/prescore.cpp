@@ -176,9 +176,9 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
 // pieces keep their tet surfaces (a choice, noted). `own`, when given (the input, which
 // `surface` wraps), gives the outer faces instead (use_input_faces; reduced to
-// kRenderSurfaceTriangles by meshoptimizer first), drawn from both sides unless `own_closed`, the
-// fracture faces' rims moved `rim_inset` in.
-// One log line says what was done.
+// kRenderSurfaceTriangles by meshoptimizer first; not when more than kInputFaceMostTriangles
+// remain, a choice noted), drawn from both sides unless `own_closed`, the fracture faces' rims
+// moved `rim_inset` in. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
                          bool own_closed, double rim_inset, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
@@ -216,11 +216,10 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
     if (over_budget(at_most)) return;
     // CGAL's simplification and corefinement in a child process (core/isolated.h): a crash or a
     // cut past its deadline leaves the pieces their tet surfaces instead of ending prescore. The
-    // child sends back the simplified surface's triangle count (8 bytes) and, within the budget,
-    // the model with its render surfaces (the model format carries them).
+    // child sends back six counts (the simplified surface's triangles; use_input_faces' four; the
+    // input triangles it was given) and, within the budget, the model with its render surfaces
+    // (the model format carries them).
     Model cut_model;
-    // The child's reply: the simplified surface's triangle count, what use_input_faces did (its
-    // four counts, and the input triangles it was given), then the model.
     std::array<uint64_t, 6> head{};
     try {
         // CGAL's simplification: ~20 us per triangle it removes (render_surface.h); meshoptimizer's

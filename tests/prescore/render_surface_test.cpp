@@ -2,7 +2,8 @@
 // by default; none with render_surface = false), the pieces' render surfaces follow the input (99% of its vertices within 0.05% of the diagonal, normals within
 // 10 degrees on 95% of it), each is closed, none falls back to its tet surface, and two runs
 // give the same surfaces. The tet surfaces miss both by far (the test says by how much). An
-// input prescore wraps for its tets (open, or crossing itself) is drawn with its own triangles.
+// input prescore wraps for its tets (open, or crossing itself) is drawn with its own triangles,
+// unless meshoptimizer leaves it too large to draw.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -262,8 +263,9 @@ bool chose_input_faces(const PrescoreReport& r) {
 TEST(RenderSurface, AnOpenInputWrappedForItsTetsIsDrawnWithItsOwnTrianglesFromBothSides) {
     testing_support::TempDir dir;
     // An icosphere of radius 0.1 m without its topmost triangle: open, so prescore wraps it; the
-    // hole (about 7 mm across) is narrower than the wrap's alpha (6.7 mm), so the wrap closes it
-    // and the tets fill the ball (a larger hole makes the sphere a shell, which is thickened).
+    // hole (a triangle of about 7 mm sides, its inscribed circle 2 mm in radius) does not let the
+    // wrap's ball (alpha 6.9 mm) in, so the wrap closes it and the tets fill the ball (a larger
+    // hole makes the sphere a shell, which is thickened).
     const double r = 0.1;
     TriangleMesh open = icosphere(4);
     for (Vec3& v : open.vertices) v *= r;
