@@ -36,7 +36,8 @@ struct RenderSurface {
     std::vector<Vec3> normals;   // unit, one per vertex
     std::vector<Tri> triangles;  // outward oriented
     std::vector<FaceKind> kinds; // one per triangle
-    bool fell_back = false;      // the tet surface, flat shaded (the cut failed for this piece)
+    bool fell_back = false;      // the cut failed for this piece: its fracture faces are its tet faces, flat
+                                 // (its outer faces too, unless the input's own triangles took their place)
     // The input's appearance (model version 3; each empty when the input has none): texture
     // coordinates (channel 0, assimp's convention: v up, (0, 0) the image's bottom left) and
     // colours (linear RGBA) per vertex, taken on outer faces from the input triangle nearest to

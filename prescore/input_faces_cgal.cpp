@@ -112,9 +112,12 @@ Vec3 unit_or(const Vec3& v, const Vec3& fallback) { return v.norm() > 0 ? Vec3(v
 }  // namespace
 
 InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const TriangleMesh& input, const Model& model,
-                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset) {
+                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset,
+                                 const std::vector<char>* only) {
     InputFacesReport report;
     if (input.triangles.empty() || model.mesh.tets.empty() || surfaces.size() != model.pieces.size()) return report;
+    if (only && only->size() != surfaces.size()) return report;
+    const auto wanted = [&](uint32_t piece) { return !only || (*only)[piece]; };
     const PieceLocator locate(model);
     const std::vector<Vec3> corner_normal = corner_normals(input, crease_degrees);
     std::vector<Builder> built(surfaces.size());
@@ -131,14 +134,17 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
     const auto examine = [&](Node& node) {
         node.piece = locate.piece((node.p[0] + node.p[1] + node.p[2]) / 3);
         double longest = 0;
-        bool one = true;
+        bool one = true, any = wanted(node.piece);
         for (int c = 0; c < 3; ++c) {
             longest = std::max(longest, (node.p[(c + 1) % 3] - node.p[c]).norm());
-            one = one && locate.piece(node.p[c]) == node.piece;
+            const uint32_t corner = locate.piece(node.p[c]);
+            one = one && corner == node.piece;
+            any = any || wanted(corner);
         }
-        node.straddles = !one && longest > smallest;
+        node.straddles = !one && any && longest > smallest;
     };
     const auto place = [&](const Node& node) {
+        if (!wanted(node.piece)) return;
         ++report.leaves;
         built[node.piece].triangle(node.p, node.n, FaceKind::Outer);
         if (double_sided)
@@ -187,6 +193,7 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
 
     for (size_t p = 0; p < surfaces.size(); ++p) {
         Builder& b = built[p];
+        if (!wanted(uint32_t(p))) continue;
         if (b.rs.triangles.empty()) {  // no input triangle lies in this piece: it keeps its outer faces
             ++report.kept;
             continue;

@@ -1,5 +1,6 @@
 #include "prescore/prescore.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -178,7 +179,8 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // `surface` wraps), gives the outer faces instead (use_input_faces; reduced to
 // kRenderSurfaceTriangles by meshoptimizer first; not when more than kInputFaceMostTriangles
 // remain, a choice noted), drawn from both sides unless `own_closed`, the fracture faces' rims
-// moved `rim_inset` in. One log line says what was done.
+// moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut surface's triangles
+// as its outer faces. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
                          bool own_closed, double rim_inset, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
@@ -244,6 +246,16 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                             use_input_faces(found, drawn, m, tet_size, rs.crease_degrees, !own_closed, rim_inset);
                         h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves;
                     }
+                } else {
+                    // The input itself was cut: a piece whose cut failed takes the input's triangles
+                    // as its outer faces instead of its tet faces (its fracture faces stay the tets').
+                    std::vector<char> failed(found.size(), 0);
+                    for (size_t p = 0; p < found.size(); ++p) failed[p] = found[p].fell_back;
+                    if (std::count(failed.begin(), failed.end(), 1) > 0) {
+                        const InputFacesReport r =
+                            use_input_faces(found, cut, m, tet_size, rs.crease_degrees, false, 0.0, &failed);
+                        h[1] = r.pieces, h[2] = r.kept, h[3] = r.split, h[4] = r.leaves, h[5] = cut.triangles.size();
+                    }
                 }
                 for (size_t p = 0; p < found.size(); ++p) m.pieces[p].render = std::move(found[p]);
                 return reply() + encode_model(m);
@@ -274,6 +286,9 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                                         "does not move a vertex on a border or on an edge of three triangles), "
                                         "more than the {} drawn as its own",
                                         head[5], kInputFaceMostTriangles));
+    if (!own && head[1] > 0)
+        spdlog::info("render surfaces: {} whose cut failed drawn with the surface's own triangles outside ({} parts, "
+                     "{} split in four)", head[1] == 1 ? "1 piece" : fmt::format("{} pieces", head[1]), head[4], head[3]);
     if (own && head[1] > 0) {
         report.choices.note(
             fmt::format("render surfaces: the input's own triangles outside ({} pieces), the wrap's fracture faces "

@@ -97,8 +97,10 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
 // sides are drawn and lit. The fracture and cavity faces end on the wrap, outside the input: the
 // vertices they share with the wrap's outer faces move `rim_inset` (unit: m; a few times the
 // wrap's offset) in along the wrap's normal, so that the intact object shows no seams. A piece
-// that no input triangle lies in keeps its surface as it was. Deterministic: input order, one
-// thread.
+// that no input triangle lies in keeps its surface as it was. `only`, when given (one flag per
+// piece), limits all this to the pieces flagged: the others keep their surfaces (prescore gives a
+// closed input's triangles to the pieces whose cut failed, instead of their tet surfaces).
+// Deterministic: input order, one thread.
 inline constexpr double kInputFaceSplit = 0.25;  // smallest split triangle (unit: tet sizes)
 inline constexpr size_t kInputFaceBudget = 3;     // most parts per input triangle (or per kRenderSurfaceTriangles)
 inline constexpr double kInputFaceRimInset = 3;   // how far the fracture faces' rims move in (unit: wrap offsets)
@@ -115,7 +117,8 @@ struct InputFacesReport {
 };
 
 InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const TriangleMesh& input, const Model& model,
-                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset);
+                                 double tet_size, double crease_degrees, bool double_sided, double rim_inset,
+                                 const std::vector<char>* only = nullptr);
 
 // The piece's tet surface as a render surface: flat, three vertices per triangle.
 RenderSurface flat_render_surface(const PieceSurface& surface);

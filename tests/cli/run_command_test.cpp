@@ -368,14 +368,15 @@ TEST(RunCommand, HostileNamesWorkEverywhereAndRunNothing) {
 
 // A disk that fills while frames are written: a clear message naming the file and the reason, the
 // Io exit code, and the finished stages intact (their stamps still verify, so a run on a roomier
-// disk would only redo the frames). The disk holds prescore's and simulate's outputs (about 128 kB
-// with the model's render surfaces; 83 kB before them, in 120 kB) and a few frames.
+// disk would only redo the frames). The disk holds prescore's and simulate's outputs (192 kB in
+// 4 kB blocks: the cube's piece whose cut fails drawn with the input's triangles, 561 parts) and a
+// few frames.
 TEST(RunCommand, AFullDiskFailsClearlyAndKeepsWhatWasFinished) {
     TempDir dir;
     const std::string shot = write_cube_shot(dir);
     const std::string disk = dir.file("small disk");
     fs::create_directories(disk);
-    if (::geteuid() != 0 || run_command_status({"/bin/mount", "-t", "tmpfs", "-o", "size=170k", "tmpfs", disk}) != 0)
+    if (::geteuid() != 0 || run_command_status({"/bin/mount", "-t", "tmpfs", "-o", "size=240k", "tmpfs", disk}) != 0)
         GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
     const std::string out = disk + "/out";
     auto r = run_shatter({"run", shot, "-o", out, "--no-progress", "--set", "render.width=480", "--set", "render.height=270"});

@@ -217,6 +217,50 @@ TEST(RenderSurface, TwoRunsGiveTheSameSurfaces) {
     }
 }
 
+// A piece whose cut failed (prescore gives it the cut surface's triangles, use_input_faces with
+// `only`): on the cut sphere, piece 0 put back on its tet surface and given the input's triangles
+// has every outer face within the input's own sag of the sphere (its tet faces' chords sag up to
+// ten times more), keeps its tet fracture faces, and the other pieces are left as they were.
+TEST(RenderSurface, APieceWhoseCutFailedTakesTheInputsTrianglesAndTheOthersStay) {
+    testing_support::TempDir dir;
+    const Cut cut = cut_sphere(dir, std::nullopt);
+    std::vector<RenderSurface> surfaces = cut.surfaces;
+    surfaces[0] = flat_render_surface(cut.model.pieces[0].surface);
+    size_t tet_fracture = 0;
+    for (FaceKind k : surfaces[0].kinds) tet_fracture += k != FaceKind::Outer;
+    std::vector<char> only(surfaces.size(), 0);
+    only[0] = 1;
+    const InputFacesReport r = use_input_faces(surfaces, cut.input, cut.model, cut.diagonal / 12, 40, false, 0.0, &only);
+    EXPECT_EQ(r.pieces, 1u);
+    for (size_t p = 1; p < surfaces.size(); ++p) {
+        EXPECT_EQ(surfaces[p].vertices, cut.surfaces[p].vertices) << "piece " << p;
+        EXPECT_EQ(surfaces[p].triangles, cut.surfaces[p].triangles) << "piece " << p;
+    }
+    const double radius = 0.1, sag = radius * (1 - std::cos(0.06));
+    size_t outer = 0, fracture = 0;
+    for (size_t t = 0; t < surfaces[0].triangles.size(); ++t) {
+        const Tri& tri = surfaces[0].triangles[t];
+        if (surfaces[0].kinds[t] != FaceKind::Outer) {
+            ++fracture;
+            continue;
+        }
+        ++outer;
+        const auto& v = surfaces[0].vertices;
+        EXPECT_GE(((v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3).norm(), radius - sag);
+    }
+    EXPECT_GT(outer, 0u);
+    EXPECT_EQ(fracture, tet_fracture);
+    // The tet surface itself fails that: its outer chords cut deeper.
+    const RenderSurface tet = flat_render_surface(cut.model.pieces[0].surface);
+    double deepest = radius;
+    for (size_t t = 0; t < tet.triangles.size(); ++t)
+        if (tet.kinds[t] == FaceKind::Outer) {
+            const Tri& tri = tet.triangles[t];
+            deepest = std::min(deepest, ((tet.vertices[tri[0]] + tet.vertices[tri[1]] + tet.vertices[tri[2]]) / 3).norm());
+        }
+    EXPECT_LT(deepest, radius - sag);
+}
+
 // An input that prescore alpha-wraps for its tets is drawn with its own triangles
 // (use_input_faces): every outer vertex lies on an input triangle (within the sag of an
 // icosphere of radius r: the wrap's lie `offset` outside it, 1e-3 of the diagonal), the
