@@ -342,7 +342,7 @@ TEST(RenderSurface, AnOpenInputWrappedForItsTetsIsDrawnWithItsOwnTrianglesFromBo
             if (!outer[v]) continue;
             ++outer_vertices;
             const Vec3& x = p.render->vertices[v];
-            // (Render surfaces are stored in single precision.)
+            // (assimp reads the input in single precision.)
             EXPECT_LE(x.norm(), r * (1 + 1e-6)) << "outside the input, as the wrap is";
             EXPECT_GE(x.norm(), r - sag);
             // Seen from the centre, no outer vertex lies within the hole.
