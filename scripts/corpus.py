@@ -170,7 +170,9 @@ def write_table(results, path, workdir):
         "`what prescore did` lists its automatic choices (prescore/adapt.h): `size` (a file without units "
         "made 0.3 m long), `repair` (alpha wrap), `resolution` (raised where Mesh_3 lost thin parts), "
         "`thicken` (walls given a thickness), `slivers` (small tet clusters joined to their pieces), `pieces` "
-        "(raised to the number of separate bodies). Times are wall times on a shared 2-core machine, with "
+        "(raised to the number of separate bodies), `render surfaces` (drawn with the input's own triangles "
+        "where the tets came from a wrap, prescore/render_surface.h). Times are wall times on a shared 2-core "
+        "machine, with "
         "whatever else ran beside them.",
         "",
         "| file | format | result | what prescore did | pieces | tets | time (s) |",
