@@ -62,6 +62,7 @@ public:
 
     void add_mesh(const aiMesh& mesh, unsigned mesh_index, const Mat4& transform) {
         std::vector<uint32_t> remap(mesh.mNumVertices);
+        Vec3 lo = Vec3::Constant(HUGE_VAL), hi = -lo;
         for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
             const aiVector3D& v = mesh.mVertices[i];
             const Vec3 raw(v.x, v.y, v.z);
@@ -71,6 +72,7 @@ public:
                                              "') has a non-finite coordinate " + format_vec(raw),
                                   "remove or fix the NaN/Inf coordinates in the file");
             }
+            lo = lo.cwiseMin(raw), hi = hi.cwiseMax(raw);
             Eigen::Vector4d p = transform * raw.homogeneous();
             Vec3 q = p.head<3>() / p.w();
             if (!q.allFinite()) {
@@ -84,6 +86,7 @@ public:
             if (inserted) out_.vertices.push_back(q);
             remap[i] = it->second;
         }
+        if (mesh.mNumVertices > 0) note_rounding(lo, hi);
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
             if (face.mNumIndices != 3) continue;  // points and lines carry no volume
@@ -118,8 +121,22 @@ public:
         return mesh;
     }
 
+    const FloatRounding& rounding() const { return rounding_; }
+
 private:
+    // Keeps the mesh with bounds [lo, hi] (as read) if its rounding step is the coarsest so far
+    // against its size.
+    void note_rounding(const Vec3& lo, const Vec3& hi) {
+        const double size = (hi - lo).norm(), coordinate = lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff();
+        if (!(size > 0)) return;
+        const float x = float(coordinate);
+        const double step = double(std::nextafter(x, HUGE_VALF)) - double(x);
+        if (rounding_.size > 0 && !(step * rounding_.size > rounding_.step * size)) return;
+        rounding_ = {step, coordinate, size};
+    }
+
     static constexpr uint32_t kUnused = UINT32_MAX;
+    FloatRounding rounding_;
     std::string path_;
     TriangleMesh out_;
     std::unordered_map<Vec3, uint32_t, PositionHash, PositionEqual> index_;
@@ -225,7 +242,7 @@ LoadedMesh import_in_process(const std::string& path) {
 
     Merger merger(path);
     if (scene->mRootNode != nullptr) merger.add_node(*scene, *scene->mRootNode, Mat4::Identity());
-    LoadedMesh loaded{merger.take(), file_units(*scene, path)};
+    LoadedMesh loaded{merger.take(), file_units(*scene, path), merger.rounding()};
     if (loaded.mesh.triangles.empty()) {
         throw_input_error(path, "mesh file has no triangles (only points and lines)",
                           "give a file with a surface mesh; points and lines are ignored");
@@ -243,6 +260,8 @@ std::string serialize(const LoadedMesh& loaded) {
     const uint64_t nv = m.vertices.size(), nt = m.triangles.size();
     std::string out;
     out.append(reinterpret_cast<const char*>(&loaded.metres_per_unit), 8);
+    for (const double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
+        out.append(reinterpret_cast<const char*>(x), 8);
     out.append(reinterpret_cast<const char*>(&nv), 8);
     for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
     out.append(reinterpret_cast<const char*>(&nt), 8);
@@ -257,6 +276,8 @@ LoadedMesh deserialize(const std::string& bytes) {
     size_t at = 0;
     std::memcpy(&loaded.metres_per_unit, bytes.data() + at, 8);
     at += 8;
+    for (double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
+        std::memcpy(x, bytes.data() + at, 8), at += 8;
     std::memcpy(&nv, bytes.data() + at, 8);
     at += 8;
     m.vertices.resize(nv);
@@ -314,6 +335,16 @@ LoadedMesh load_mesh_file(const std::string& path) {
         "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
         "3DS, FBX, ...)";
     return import_isolated(path, format_fix);
+}
+
+std::string rounding_hint(const FloatRounding& r) {
+    if (!(r.size > 0) || !(r.step > kRoundingWarning * r.size)) return "";
+    return fmt::format("its coordinates reach {:.4g} units from the file's origin, {:.3g} times the size of the mesh "
+                       "they belong to ({:.3g} units across); the reader (assimp) holds coordinates in single "
+                       "precision, which there rounds them to steps of {:.2g} units, {:.2g}% of that size, so the "
+                       "surface comes out stepped. Move the object to the origin before exporting it (in Blender: "
+                       "Object > Set Origin > Origin to Geometry, then Object > Clear > Location)",
+                       r.coordinate, r.coordinate / r.size, r.size, r.step, 100 * r.step / r.size);
 }
 
 TriangleMesh load_mesh(const std::string& path, double scale) {

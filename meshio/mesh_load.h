@@ -11,7 +11,8 @@
 //      vertices are joined on position alone);
 //   3. walks the node tree depth first (children in file order, a node's meshes in file order),
 //      applying each node's accumulated transform in double precision; a mesh instanced by
-//      several nodes is added once per instance;
+//      several nodes is added once per instance; the coarsest rounding of assimp's single
+//      precision coordinates, against the size of the mesh it rounds, is recorded (FloatRounding);
 //   4. drops points and lines (faces with fewer than 3 indices);
 //   5. merges vertices with exactly equal positions across meshes, keeping the first
 //      occurrence's place (deterministic: the output depends only on the file);
@@ -27,10 +28,31 @@
 
 namespace shatter {
 
+// assimp holds coordinates in single precision, which rounds a coordinate x to steps of about
+// |x| / 2^23 (8.4 million): a mesh far from its file's origin, relative to its size, is read
+// stepped (a scan kept in survey coordinates). The coarsest such step among the file's meshes
+// against the size of the mesh it rounds, in the file's units, before any node transform
+// (those are applied in double precision); all 0 when no mesh has a size.
+struct FloatRounding {
+    double step = 0;        // the spacing of single-precision numbers at `coordinate`
+    double coordinate = 0;  // the mesh's largest coordinate, in magnitude
+    double size = 0;        // the diagonal of the mesh's bounding box
+};
+
 struct LoadedMesh {
     TriangleMesh mesh;           // in the file's units
     double metres_per_unit = 0;  // what the file says a unit is (unit: m); 0 when its format has no units
+    FloatRounding rounding;
 };
+
+// A step of the reading's rounding past this fraction of the mesh's size is worth a warning: the
+// rounding then shows (1e-3 of a 0.3 m object is 0.3 mm; at 1e-2 the stepped surface shows in a
+// frame and in the tets) (unit: 1).
+inline constexpr double kRoundingWarning = 1e-3;
+
+// What the rounding `r` did and how to avoid it, for a warning; empty when its step is within
+// kRoundingWarning of the mesh's size.
+std::string rounding_hint(const FloatRounding& r);
 
 // Loads `path` in the file's own units, with what the file says a unit is: glTF/GLB (metres by
 // the specification) and Collada (assimp applies its <unit meter>) give 1, FBX its

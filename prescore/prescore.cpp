@@ -347,6 +347,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
 
     const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
     LoadedMesh loaded = load_mesh_file(mesh_settings.path);
+    if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
+        spdlog::warn("{}: {}", mesh_settings.path, hint);
     if (!mesh_settings.size) {
         // Numbers this far from a metre lose precision whatever the size asked for: check them
         // in the units given (or the file's) before any automatic size.

@@ -126,8 +126,8 @@ TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCaseBesideTheFileOrInAFolder
     EXPECT_EQ(texture_of(a).texture_name, "DUCKcm.TGA");
 }
 
-// assimp's FBX spider names its textures where it was made (D:\projects\...\models\OBJ\
-// drkwood2.jpg, ...); copied to models/FBX/ with the images in models/OBJ/, each is found by the
+// assimp's FBX spider names its textures where it was made (D:\projects\...\models\OBJ\drkwood2.jpg,
+// ...); copied to models/FBX/ with the images in models/OBJ/, each is found by the
 // written path's last folder and name under the folder above the file's.
 TEST(Appearance, ATextureIsFoundByTheEndOfItsWrittenPathAboveTheFile) {
     const std::string spider = kModels + "/FBX/spider.fbx";

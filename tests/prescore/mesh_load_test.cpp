@@ -173,6 +173,40 @@ TEST(LoadMesh, GltfMeshUsedByTwoNodesGivesTwoCubesWithNodeTransformsApplied) {
     EXPECT_EQ(check.bbox_max, Vec3(5, 2, 2));
 }
 
+// The unit cube moved by `offset` along every axis, as OBJ text (written exactly).
+std::string cube_obj_at(double offset) {
+    std::ostringstream s;
+    s.precision(17);
+    for (const auto& c : kCorners) s << "v " << c[0] + offset << " " << c[1] + offset << " " << c[2] + offset << "\n";
+    for (const auto& f : kFaces) s << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+    return s.str();
+}
+
+// Single precision spaces numbers in [2^k, 2^(k+1)) by 2^(k-23): the unit cube (diagonal sqrt 3)
+// read at 2.5 million units from the origin is rounded to steps of 2^-2, at 20,000 to 2^-9 (1.1e-3
+// of its size: warned), at 4,000 to 2^-12 (1.4e-4: not); at the origin, to 2^-23.
+TEST(LoadMesh, AMeshFarFromItsOriginIsToldHowCoarselySinglePrecisionRoundsIt) {
+    const struct { double offset, step; bool warned; } cases[] = {
+        {2.5e6, 0x1p-2, true}, {2e4, 0x1p-9, true}, {4e3, 0x1p-12, false}, {0, 0x1p-23, false}};
+    for (const auto& c : cases) {
+        const LoadedMesh loaded = load_mesh_file(write_file("cube_far.obj", cube_obj_at(c.offset)));
+        EXPECT_EQ(loaded.rounding.step, c.step) << c.offset;
+        EXPECT_EQ(loaded.rounding.coordinate, c.offset + 1) << c.offset;
+        EXPECT_NEAR(loaded.rounding.size, std::sqrt(3.0), 1e-9 * (c.offset + 1)) << c.offset;
+        const std::string hint = rounding_hint(loaded.rounding);
+        EXPECT_EQ(!hint.empty(), c.warned) << c.offset << ": " << hint;
+    }
+    const std::string hint = rounding_hint(load_mesh_file(write_file("cube_far.obj", cube_obj_at(2.5e6))).rounding);
+    for (const char* part : {"2.5e+06 units", "1.44e+06 times", "1.73 units across", "steps of 0.25 units", "14%",
+                             "Move the object to the origin"})
+        EXPECT_NE(hint.find(part), std::string::npos) << part << " in: " << hint;
+    // Node transforms are applied in double precision: a mesh is measured by the coordinates its
+    // file holds (the second cube, moved by 3 and scaled by 2, reaches 5 only after its transform).
+    const LoadedMesh moved = load_mesh_file(write_file("two_cubes.gltf", cube_gltf_two_instances()));
+    EXPECT_EQ(moved.rounding.coordinate, 1.0);
+    EXPECT_EQ(rounding_hint(moved.rounding), "");
+}
+
 TEST(LoadMesh, GlmarkBunnyHasPhysicsMdCountsClosedManifoldOneComponentTwoCrossings) {
     const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
     if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not installed (glmark2-data)";
