@@ -880,6 +880,21 @@ void BulletWorld::restore(const Snapshot& s) {
     }
 }
 
+double BulletWorld::velocity_jump_force(size_t c, const Snapshot& before) const {
+    const auto& j = impl_->joints[c];
+    if (!j.active || !j.constraint) return 0;
+    const CompliantPointConstraint& k = *j.constraint;
+    double jump = 0;
+    for (const btRigidBody* b : {&k.getRigidBodyA(), &k.getRigidBodyB()}) {
+        const Snapshot::Body& then = before.bodies[size_t(b->getUserIndex2())];
+        const btVector3 r = b->getWorldTransform().getBasis() * (b == &k.getRigidBodyA() ? k.getPivotInA() : k.getPivotInB());
+        const btVector3 dv = (b->getLinearVelocity() - then.linear) + (b->getAngularVelocity() - then.angular).cross(r);
+        jump = std::max(jump, double(dv.length()));
+    }
+    const double w = k.row_inverse_masses().minCoeff();
+    return w > 0 ? jump * std::sqrt(k.stiffness() / w) : HUGE_VAL;
+}
+
 size_t BulletWorld::constraint_count() const { return impl_->joints.size(); }
 bool BulletWorld::active(size_t c) const { return impl_->joints[c].active; }
 double BulletWorld::strength(size_t c) const { return impl_->joints[c].strength; }

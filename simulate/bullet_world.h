@@ -142,6 +142,13 @@ public:
 
     // State of every body (its sleep too), for rollback.
     struct Snapshot;
+    // How suddenly the last step moved what a joint holds: the largest change, from `before` to
+    // now, of either of its bodies' velocity at its pivot (unit: m/s), times sqrt(k / w) for its
+    // softest row (w that row's inverse effective mass): the peak force a jump of that size
+    // brings on the joint's spring (docs/physics.md section 7; unit: N). A load that a step moves
+    // between balanced joints (a chain pulled slowly) changes their forces, not their bodies'
+    // velocities.
+    double velocity_jump_force(size_t c, const Snapshot& before) const;
     std::shared_ptr<Snapshot> save() const;
     void restore(const Snapshot& s);
     // Sets every contact point's remembered impulses to zero: after a restore, the solver would

@@ -117,7 +117,7 @@ public:
                                            : world_.force_on_a(c);
         world_.set_step(h);
         world_.step();
-        const double load = impact_load();
+        const double load = impact_load(*start);
         const double approach = world_.approach_load();
         other_load_ = std::max(other_load_, approach);
         if (!(load < kAutoRefineLoad) || !(approach < kAutoRefineLoad)) {
@@ -227,9 +227,11 @@ public:
     // The largest load of the probe step over the joints' strength, counting a sudden one at the
     // force the joint would really reach: a change df of a joint's force within a step that treats
     // it as rigid (omega h > 1) stands for a relative velocity jump whose peak force is
-    // omega h |df| (docs/physics.md section 7), where the step itself shows only df.
+    // omega h |df| (docs/physics.md section 7), where the step itself shows only df; no more than
+    // the peak force of the jump its bodies' velocities show from `start` to now (a load moved
+    // between joints that balance on their bodies, as a slow pull loads a chain, is no impact).
     // Also keeps its two parts (spring_load_, other_load_), of which it is the larger.
-    double impact_load() {
+    double impact_load(const BulletWorld::Snapshot& start) {
         spring_load_ = other_load_ = 0;
         const auto over = [](double x, double s) { return s > 0 ? x / s : (x > 0 ? INFINITY : 0.0); };
         for (size_t c = 0; c < world_.constraint_count(); ++c) {
@@ -237,11 +239,8 @@ public:
             const Vec3 f = world_.force_on_a(c);
             const double omega_h = world_.joint_frequency(c) * world_.h();
             // The spring's own force k |d| too: a solve that did not converge shows less than
-            // the stretch holds (docs/physics.md section 5a). Not for a joint to a driven piece,
-            // whose pose is already the one of the step's end: its stretch holds the drive's
-            // motion within the step.
-            const bool both = world_.piece_dynamic(world_.piece_a(c)) && world_.piece_dynamic(world_.piece_b(c));
-            const double spring = both ? world_.stiffness(c) * world_.joint_stretch(c).stretch.norm() : 0.0;
+            // the stretch holds (docs/physics.md section 5a).
+            const double spring = world_.stiffness(c) * world_.joint_stretch(c).stretch.norm();
             const double s = world_.strength(c);
             // A solve that stops at a tolerance (direct joints: kDirectTolerance of the strength)
             // leaves two forces of one joint up to twice that apart with nothing happening (the
@@ -254,7 +253,8 @@ public:
             const double counted = block_fine_ ? std::min(change, f.norm()) : change;
             const double df = std::max(0.0, counted - 2 * world_.joint_tolerance() * s);
             spring_load_ = std::max(spring_load_, over(spring, s));
-            other_load_ = std::max(other_load_, over(std::max(f.norm(), omega_h * df), s));
+            const double sudden = df > 0 ? std::min(omega_h * df, world_.velocity_jump_force(c, start)) : 0.0;
+            other_load_ = std::max(other_load_, over(std::max(f.norm(), sudden), s));
         }
         return std::max(spring_load_, other_load_);
     }
