@@ -72,10 +72,17 @@ nlohmann::ordered_json stage_choices(const nlohmann::ordered_json& settings) {
     return settings.value("auto", nlohmann::ordered_json::array());
 }
 
+nlohmann::ordered_json stage_warnings(const nlohmann::ordered_json& settings) {
+    if (!settings.is_object()) return nlohmann::ordered_json::array();
+    return settings.value("warnings", nlohmann::ordered_json::array());
+}
+
 std::string stage_choices_text(const nlohmann::ordered_json& settings) {
     std::string out;
     for (const auto& c : stage_choices(settings))
         out += fmt::format("chosen        {}; why: {}\n", c.value("what", std::string()), c.value("why", std::string()));
+    for (const auto& w : stage_warnings(settings))
+        if (w.is_string()) out += fmt::format("warning       {}\n", w.get<std::string>());
     return out;
 }
 

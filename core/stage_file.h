@@ -52,7 +52,11 @@ std::string producer_string();
 // What a stage chose by itself, kept in its file's settings (parsed) under "auto": prescore's in
 // a model, simulate's in a trajectory, {"what", "why"} each; an empty array when none.
 nlohmann::ordered_json stage_choices(const nlohmann::ordered_json& settings);
-// Those choices as `shatter info` lists them, a line each: "chosen        WHAT; why: WHY".
+// Those choices as `shatter info` lists them, a line each: "chosen        WHAT; why: WHY"; then
+// the stage's warnings, a line each: "warning       TEXT".
 std::string stage_choices_text(const nlohmann::ordered_json& settings);
+// What a stage warned of, kept in its file's settings under "warnings" (texts, in order; files
+// named relative to the mesh's folder); an empty array when none.
+nlohmann::ordered_json stage_warnings(const nlohmann::ordered_json& settings);
 
 }  // namespace shatter

@@ -304,6 +304,13 @@ std::string report_page_html(const ReportPageInput& in) {
     if (!s["simulation"].value("complete", true))
         out += "<p class=\"note bad\">The simulation went unstable and stopped early: the trajectory and everything made "
                "from it end there (see the stability rows below and run.log).</p>\n";
+    // What prescore and simulate warned of (the model's and the trajectory's own), where it is seen.
+    std::string warned;
+    for (const char* stage : {"model", "simulation"})
+        for (const json& w : s[stage].value("warnings", json::array()))
+            warned += fmt::format("<li><span class=\"muted\">{}:</span> {}</li>\n",
+                                  stage == std::string("model") ? "prescore" : "simulate", html_escape(w.get<std::string>()));
+    if (!warned.empty()) out += "<div class=\"note\" id=\"warnings\"><strong>Warnings</strong>\n<ul>\n" + warned + "</ul>\n</div>\n";
 
     out += media_section(files, in.name);
     out += viewer_section(in);

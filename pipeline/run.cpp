@@ -162,7 +162,15 @@ public:
         steps_ = steps();
         for (const StageStep& step : steps_) run_step(step);
         write_report_times(dir_.string(), result_.stages);
-        result_.warnings = warnings->taken();
+        // The stages' own warnings first, from their files (also those of stages that were up to
+        // date), then what this run logged besides.
+        if (!result_.summary.empty())
+            for (const char* part : {"model", "simulation"})
+                for (const json& w : result_.summary[part].value("warnings", json::array()))
+                    result_.warnings.push_back(w.get<std::string>());
+        for (std::string& w : warnings->taken())
+            if (std::find(result_.warnings.begin(), result_.warnings.end(), w) == result_.warnings.end())
+                result_.warnings.push_back(std::move(w));
         return std::move(result_);
     }
 
@@ -502,14 +510,17 @@ private:
                       {"tets", m.mesh.tets.size()},
                       {"collision_parts", parts}};
         // What prescore chose for the mesh, and why (the model's settings keep it).
-        if (json chosen = stage_choices(json::parse(m.settings_json, nullptr, false)); !chosen.empty())
-            s["model"]["auto"] = std::move(chosen);
+        const json model_settings = json::parse(m.settings_json, nullptr, false);
+        if (json chosen = stage_choices(model_settings); !chosen.empty()) s["model"]["auto"] = std::move(chosen);
+        if (json warned = stage_warnings(model_settings); !warned.empty()) s["model"]["warnings"] = std::move(warned);
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
         // What simulate chose (joints, a stiffness raised), and why (the trajectory's settings keep it).
-        if (json chosen = stage_choices(json::parse(trajectory().settings_json, nullptr, false)); !chosen.empty())
-            s["simulation"]["auto"] = std::move(chosen);
+        const json trajectory_settings = json::parse(trajectory().settings_json, nullptr, false);
+        if (json chosen = stage_choices(trajectory_settings); !chosen.empty()) s["simulation"]["auto"] = std::move(chosen);
+        if (json warned = stage_warnings(trajectory_settings); !warned.empty())
+            s["simulation"]["warnings"] = std::move(warned);
         s["instability"] = instability();
         json files = json::object();
         for (const char* suffix : {".model", ".pieces.ply", ".traj", ".breaks.jsonl", ".energy.csv", ".instability.json", ".mp4",
@@ -594,8 +605,8 @@ std::string format_run_summary(const RunResult& r) {
         for (const auto& [what, name] : r.summary["files"].items())
             out += fmt::format("  {:<16} {}/{}\n", what, r.output_dir, name.get<std::string>());
     if (!r.warnings.empty()) {
-        out += fmt::format("warnings: {} (as logged above and in run.log; stages that were up to date said theirs "
-                           "when they ran)\n", r.warnings.size());
+        out += fmt::format("warnings: {} (prescore's and simulate's also in summary.json and report.html)\n",
+                           r.warnings.size());
         for (const std::string& w : r.warnings) out += fmt::format("  - {}\n", w);
     }
     for (const StageReport& s : r.stages)

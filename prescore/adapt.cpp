@@ -22,6 +22,13 @@ void AutoChoices::note(std::string what, std::string why) {
     list.push_back({std::move(what), std::move(why)});
 }
 
+void AutoChoices::warn(std::string text) {
+    if (!folder.empty())
+        for (size_t at = text.find(folder); at != std::string::npos; at = text.find(folder, at)) text.erase(at, folder.size());
+    spdlog::warn("{}", text);
+    if (std::find(warnings.begin(), warnings.end(), text) == warnings.end()) warnings.push_back(std::move(text));
+}
+
 nlohmann::ordered_json AutoChoices::to_json() const {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const AutoChoice& c : list) j.push_back({{"what", c.what}, {"why", c.why}});
@@ -37,7 +44,7 @@ double choose_scale(const TriangleMesh& mesh, double file_metres_per_unit, const
     if (settings.scale) return *settings.scale;
     if (file_metres_per_unit > 0) {
         const std::string hint = units_hint(longest * file_metres_per_unit);
-        if (!hint.empty()) spdlog::warn("{}: {}", settings.path, hint);
+        if (!hint.empty()) choices.warn(fmt::format("{}: {}", settings.path, hint));
         return file_metres_per_unit;
     }
     if (!(longest > 0)) return 1.0;  // flat or empty: refused later with the real reason

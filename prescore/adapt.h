@@ -55,10 +55,16 @@ struct AutoChoice {
     std::string why;   // e.g. "the tets fell apart into 7 clusters (the surface has 1 component)"
 };
 
-// The choices made for one mesh, in order. note() logs "auto: WHAT (WHY)" and records it.
+// The choices made for one mesh, in order. note() logs "auto: WHAT (WHY)" and records it; warn()
+// logs a warning and records it (each text once), whatever the log level: the model keeps both.
+// A warning names files relative to `folder` (the mesh's, with its separator), so that the same
+// inputs give the same model wherever they live.
 struct AutoChoices {
     std::vector<AutoChoice> list;
+    std::vector<std::string> warnings;
+    std::string folder;
     void note(std::string what, std::string why);
+    void warn(std::string text);
     nlohmann::ordered_json to_json() const;
 };
 

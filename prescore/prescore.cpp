@@ -148,6 +148,7 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     j["mesh"]["fnv1a64"] = fmt::format("{:016x}", mesh_hash);
     j["prescore"] = to_json(settings);
     if (!choices.list.empty()) j["auto"] = choices.to_json();  // what prescore chose, and why
+    if (!choices.warnings.empty()) j["warnings"] = choices.warnings;  // and what it warned of
     return j.dump();
 }
 
@@ -312,20 +313,20 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
 // The input's materials, textures, texture coordinates and colours on the render surfaces
 // (prescore/appearance_transfer.h), when it has any beyond its shape. Never fatal: a file whose
 // appearance cannot be read is drawn in the material colour, with a warning.
-void add_appearance(Model& model, const std::string& path, double scale) {
+void add_appearance(Model& model, const std::string& path, double scale, AutoChoices& choices) {
     Appearance look;
     try {
         look = load_appearance(path);
     } catch (const Error& e) {
-        spdlog::warn("appearance: not read, the pieces are drawn in one colour ({})", e.what());
+        choices.warn(fmt::format("appearance: not read, the pieces are drawn in one colour ({})", e.what()));
         return;
     }
-    for (const std::string& w : look.warnings) spdlog::warn("appearance: {}", w);
+    for (const std::string& w : look.warnings) choices.warn("appearance: " + w);
     if (look.plain()) return;
     for (Vec3& v : look.mesh.vertices) {
         v *= scale;
         if (!v.allFinite()) {  // load_mesh refuses such a file; a second reading must not differ
-            spdlog::warn("appearance: not used, a vertex is not finite; the pieces are drawn in one colour");
+            choices.warn("appearance: not used, a vertex is not finite; the pieces are drawn in one colour");
             return;
         }
     }
@@ -344,11 +345,13 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     PrescoreReport& report = report_out ? *report_out : local;
     PhaseTimer timer(report);
     AutoChoices& choices = report.choices;
+    if (const std::filesystem::path folder = std::filesystem::path(mesh_settings.path).parent_path(); !folder.empty())
+        choices.folder = (folder / "").string();
 
     const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
     LoadedMesh loaded = load_mesh_file(mesh_settings.path);
     if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
-        spdlog::warn("{}: {}", mesh_settings.path, hint);
+        choices.warn(fmt::format("{}: {}", mesh_settings.path, hint));
     if (!mesh_settings.size) {
         // Numbers this far from a metre lose precision whatever the size asked for: check them
         // in the units given (or the file's) before any automatic size.
@@ -409,7 +412,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
                             kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal, report);
         timer.lap("render surfaces");
         if (report.render_surfaces > 0) {
-            add_appearance(model, mesh_settings.path, report.scale);
+            add_appearance(model, mesh_settings.path, report.scale, choices);
             timer.lap("appearance");
         }
     }

@@ -387,9 +387,10 @@ private:
     bool block_fine_ = false;
 };
 
-// `chosen`: what simulate chose by itself ({"what", "why"} each), kept under "auto" when any.
+// `chosen`: what simulate chose by itself ({"what", "why"} each), kept under "auto" when any;
+// `warnings`: what it warned of, under "warnings" when any.
 std::string trajectory_settings(const SimulationInput& in, const std::string& model_id, const Model& model,
-                                const nlohmann::ordered_json& chosen) {
+                                const nlohmann::ordered_json& chosen, const std::vector<std::string>& warnings) {
     nlohmann::ordered_json j;
     j["model"] = {{"fnv1a64", model_id}, {"pieces", model.pieces.size()}};
     j["scene"] = to_json(in.scene);
@@ -397,7 +398,14 @@ std::string trajectory_settings(const SimulationInput& in, const std::string& mo
     j["material"] = to_json(in.material);
     j["simulate"] = to_json(in.simulate);
     if (!chosen.empty()) j["auto"] = chosen;
+    if (!warnings.empty()) j["warnings"] = warnings;
     return j.dump();
+}
+
+// Logs a warning and keeps it in `kept` (each text once).
+void warn(std::vector<std::string>& kept, std::string text) {
+    spdlog::warn("{}", text);
+    if (std::find(kept.begin(), kept.end(), text) == kept.end()) kept.push_back(std::move(text));
 }
 
 void record(const BulletWorld& world, Trajectory& t) {
@@ -423,7 +431,7 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
     }
     if (out.clamps++ == 0) {
         out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks, &out.first_clamp_at);
-        spdlog::warn("simulate: clamping velocities (on_instability = clamp): {}", out.first_clamp);
+        warn(out.warnings, "simulate: clamping velocities (on_instability = clamp): " + out.first_clamp);
     }
     world.scale_piece_velocities(std::sqrt(e.limit / e.kinetic));
     return true;
@@ -460,7 +468,8 @@ double most_moving(const BulletWorld& world, const std::vector<double>& radius, 
 // and, when the joints that hold it all lie on one line (one joint: a ball; more: a hinge) to one
 // neighbour, that: such a piece swings about them, with nothing but the joints' damping to stop it
 // while it does not turn into its neighbour (kOverlapBreak; docs/physics.md section 3).
-void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s) {
+void warn_still_moving(const BulletWorld& world, const std::vector<double>& radius, const SimulateSettings& s,
+                       std::vector<std::string>& kept) {
     uint32_t worst = 0;
     if (most_moving(world, radius, &worst) < 0) return;
     std::vector<Vec3> pivots;
@@ -491,9 +500,11 @@ void warn_still_moving(const BulletWorld& world, const std::vector<double>& radi
                                neighbours[0], pivots.size() == 1 ? "one joint" : fmt::format("{} joints", pivots.size()),
                                pivots.size() == 1 ? "ball joint" : "hinge");
     }
-    spdlog::warn("simulate: the pieces were still moving at max_duration = {:g} s (duration = \"auto\"): piece {} at "
-                 "{:.3g} m/s and {:.3g} rad/s{}. The movie runs to max_duration; a fixed [simulate] duration ends it sooner",
-                 s.max_duration, worst, world.piece_velocity(worst).norm(), world.piece_angular_velocity(worst).norm(), held);
+    warn(kept, fmt::format("simulate: the pieces were still moving at max_duration = {:g} s (duration = \"auto\"): "
+                           "piece {} at {:.3g} m/s and {:.3g} rad/s{}. The movie runs to max_duration; a fixed "
+                           "[simulate] duration ends it sooner",
+                           s.max_duration, worst, world.piece_velocity(worst).norm(),
+                           world.piece_angular_velocity(worst).norm(), held));
 }
 
 }  // namespace
@@ -567,6 +578,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // the step (docs/physics.md section 5b), so neither stiffen nor the CFM check applies.
     const bool direct = solves_joints_directly(model, in.simulate);
     nlohmann::ordered_json chosen = nlohmann::ordered_json::array();  // logged, and kept in the trajectory
+    std::vector<std::string> warned;                                   // the same
     const auto choose = [&](const std::string& what, const std::string& why) {
         spdlog::info("auto: {} ({})", what, why);
         chosen.push_back({{"what", what}, {"why", why}});
@@ -584,14 +596,15 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                                kIterativeIslandRatio));
         } else {
             const bool joined = ratio > kIterativeMassRatio;
-            spdlog::warn("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to {}), but piece "
-                         "{} is {:.3g} times as heavy as piece {} {}: iterative joints may break or drift apart where "
-                         "they should hold from a mass ratio of {:g} (docs/accuracy.md, \"The stability map\"). "
-                         "[simulate] joints = \"direct\" holds them, at about 2 to 5 times the simulation's time at 100 "
-                         "to 1,000 pieces",
-                         model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy, joined ? ratio : island,
-                         joined ? light : island_light, joined ? "joined to it" : "in its island of joined pieces",
-                         joined ? kIterativeMassRatio : kIterativeIslandRatio);
+            warn(warned, fmt::format("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to "
+                                     "{}), but piece {} is {:.3g} times as heavy as piece {} {}: iterative joints may "
+                                     "break or drift apart where they should hold from a mass ratio of {:g} "
+                                     "(docs/accuracy.md, \"The stability map\"). [simulate] joints = \"direct\" holds "
+                                     "them, at about 2 to 5 times the simulation's time at 100 to 1,000 pieces",
+                                     model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy,
+                                     joined ? ratio : island, joined ? light : island_light,
+                                     joined ? "joined to it" : "in its island of joined pieces",
+                                     joined ? kIterativeMassRatio : kIterativeIslandRatio));
         }
     }
     if (in.material.stiffen && !direct) {
@@ -623,9 +636,9 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     world.joint_frequencies(&stiffest, &softest);
 
     SimulationResult out;
+    out.warnings = std::move(warned);
     Trajectory& t = out.trajectory;
     t.producer = producer_string();
-    t.settings_json = trajectory_settings(in, model_id, model, chosen);
     t.fps = in.simulate.fps;
     t.pieces = world.pieces();
     t.props = world.props();
@@ -825,7 +838,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     t.complete = out.complete;
     out.asleep = world.sleeping_pieces();
     out.parallel_contact_tests = world.parallel_contact_tests();
-    if (in.simulate.auto_duration && out.complete && out.rest_time < 0) warn_still_moving(world, radius, in.simulate);
+    if (in.simulate.auto_duration && out.complete && out.rest_time < 0) warn_still_moving(world, radius, in.simulate, out.warnings);
     if (world.flying())
         spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "
                      "reach ([simulate] rigid_flight)");
@@ -834,27 +847,31 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                      "reach ([simulate] rigid_flight)",
                      world.flight_end());
     if (out.breaks.empty() && !in.simulate.auto_substeps && stiffest * h > kStiffStepWarning)
-        spdlog::warn("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = {:.0f}: "
-                     "an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md section 7). For "
-                     "a stiff material, [simulate] substeps = \"auto\" and joints = \"direct\" resolve it (glmark2's "
-                     "bunny in porcelain, dropped 1.5 m: 59 breaks, 11 s for the whole job)",
-                     h, stiffest * h, stiffest * h);
+        warn(out.warnings,
+             fmt::format("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = "
+                         "{:.0f}: an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md "
+                         "section 7). For a stiff material, [simulate] substeps = \"auto\" and joints = \"direct\" "
+                         "resolve it (glmark2's bunny in porcelain, dropped 1.5 m: 59 breaks, 11 s for the whole job)",
+                         h, stiffest * h, stiffest * h));
     // Before the first break, a structure under load should hold forces its stretch explains;
     // an impact's pushes (docs/physics.md section 5a) are not the solve's to fix.
     const ResidualPeak& r = out.residual_before_break;
     if (r.residual > kResidualTolerance)
-        spdlog::warn("simulate: the joints' forces do not match their stretch: up to {:.1f}% of the strength off "
-                     "(constraint {}, pieces {} and {}, at {:.4f} s, before the first break; tolerance {:g}%): the "
-                     "solve, or a contact's push, left them apart, so a break's energy (read from its force) is "
-                     "not what its stretch held (docs/physics.md sections 5a and 5b; {})",
-                     100 * r.residual, r.constraint, world.piece_a(size_t(r.constraint)),
-                     world.piece_b(size_t(r.constraint)), r.time, 100 * kResidualTolerance,
-                     direct ? fmt::format("more [simulate] iterations let the direct solve converge further, now {}",
-                                          in.simulate.iterations)
-                            : fmt::format("[simulate] joints = \"direct\" solves the joints exactly and moves "
-                                          "joined pieces together when contacts push them; or more [simulate] "
-                                          "iterations, now {}",
-                                          in.simulate.iterations));
+        warn(out.warnings,
+             fmt::format("simulate: the joints' forces do not match their stretch: up to {:.1f}% of the strength off "
+                         "(constraint {}, pieces {} and {}, at {:.4f} s, before the first break; tolerance {:g}%): the "
+                         "solve, or a contact's push, left them apart, so a break's energy (read from its force) is "
+                         "not what its stretch held (docs/physics.md sections 5a and 5b; {})",
+                         100 * r.residual, r.constraint, world.piece_a(size_t(r.constraint)),
+                         world.piece_b(size_t(r.constraint)), r.time, 100 * kResidualTolerance,
+                         direct ? fmt::format("more [simulate] iterations let the direct solve converge further, now {}",
+                                              in.simulate.iterations)
+                                : fmt::format("[simulate] joints = \"direct\" solves the joints exactly and moves "
+                                              "joined pieces together when contacts push them; or more [simulate] "
+                                              "iterations, now {}",
+                                              in.simulate.iterations)));
+    // The settings last: they keep every warning of the run.
+    t.settings_json = trajectory_settings(in, model_id, model, chosen, out.warnings);
     return out;
 }
 

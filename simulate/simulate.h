@@ -140,6 +140,9 @@ struct SimulationResult {
     uint64_t clamps = 0;
     std::string first_clamp;
     InstabilityWhere first_clamp_at;
+    // What simulate warned of, in order, each once, whatever the log level (the trajectory's
+    // settings keep them under "warnings").
+    std::vector<std::string> warnings;
 };
 
 // Runs the simulation. `model_id` (e.g. the model file's hash) goes into the trajectory's

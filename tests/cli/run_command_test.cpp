@@ -99,6 +99,25 @@ TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
     ASSERT_NE(listed, std::string::npos) << strong.out;
     EXPECT_NE(strong.out.find("  - simulate: no joint broke", listed), std::string::npos) << strong.out;
     EXPECT_EQ(weak.out.find("warnings: "), std::string::npos) << weak.out;
+    // The trajectory keeps it: summary.json and `shatter info` show it, and a run that finds
+    // simulate up to date (nothing logged) still lists it at the end.
+    const nlohmann::json summary = nlohmann::json::parse(slurp(dir.file("strong/summary.json")));
+    size_t kept = 0;
+    for (const auto& w : summary["simulation"].value("warnings", nlohmann::json::array()))
+        kept += w.get<std::string>().rfind("simulate: no joint broke", 0) == 0;
+    EXPECT_EQ(kept, 1u) << summary.dump(2);
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir.file("weak/summary.json")))["simulation"].contains("warnings"));
+    std::string traj;
+    for (const auto& e : fs::directory_iterator(dir.file("strong")))
+        if (e.path().extension() == ".traj") traj = e.path().string();
+    const auto info = run_shatter({"info", traj});
+    EXPECT_NE(info.out.find("warning       simulate: no joint broke"), std::string::npos) << info.out;
+    auto again = run_shatter({"run", shot, "-o", dir.file("strong"), "--no-progress", "--stages", "prescore,simulate",
+                              "--set", "material.strength=1e9"});
+    ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+    EXPECT_NE(stage_status(again.out, "simulate").find("(up to date)"), std::string::npos) << again.out;
+    EXPECT_EQ(again.err.find("no joint broke"), std::string::npos) << again.err;
+    EXPECT_NE(again.out.find("  - simulate: no joint broke"), std::string::npos) << again.out;
 }
 
 TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {

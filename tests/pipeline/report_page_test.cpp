@@ -22,6 +22,7 @@
 
 #include "core/html.h"
 #include "pipeline/process.h"
+#include "pipeline/report_page.h"
 #include "render/image_diff.h"
 #include "render/png_io.h"
 #include "support/cube_shot.h"
@@ -294,6 +295,26 @@ TEST(DiffPage, ShowsTheFailingImagesSideBySideWithTheirMetricsAndTolerances) {
     std::string html2 = slurp(report2 + "/report.html");
     // The page names the folders it compared, not the report folder: the bytes are the same.
     EXPECT_EQ(html2, html);
+}
+
+// The model's and the trajectory's warnings open the page, each once, escaped, with the stage it
+// came from; a summary without any has no such box.
+TEST(ReportPage, ShowsTheStagesWarningsAtTheTop) {
+    ReportPageInput in;
+    in.name = "cube";
+    in.summary = nlohmann::ordered_json::parse(R"({"shot": "cube.toml", "files": {}, "alpha": 1,
+        "model": {"pieces": 2, "warnings": ["cube.obj: steps of 0.25 units <stepped>"]},
+        "simulation": {"complete": true, "warnings": ["simulate: no joint broke & more"]},
+        "instability": {}})");
+    const std::string html = report_page_html(in);
+    const size_t box = html.find("<div class=\"note\" id=\"warnings\">");
+    ASSERT_NE(box, std::string::npos) << html;
+    EXPECT_LT(box, html.find("<h2>Summary</h2>"));
+    EXPECT_NE(html.find("prescore:</span> cube.obj: steps of 0.25 units &lt;stepped&gt;</li>", box), std::string::npos) << html;
+    EXPECT_NE(html.find("simulate:</span> simulate: no joint broke &amp; more</li>", box), std::string::npos) << html;
+    in.summary["model"].erase("warnings");
+    in.summary["simulation"].erase("warnings");
+    EXPECT_EQ(report_page_html(in).find("id=\"warnings\""), std::string::npos);
 }
 
 TEST(PageHelpers, EscapeBase64AndUrls) {

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
 
 #include "core/error.h"
 #include "prescore/adapt.h"
@@ -108,6 +111,36 @@ TEST(Adapt, AFileWhoseUnitsMakeItHugeOrTinyIsToldTheSizesOtherUnitsWouldGive) {
     const std::string tiny = units_hint(5e-4);
     EXPECT_NE(tiny.find("0.0005 m long"), std::string::npos) << tiny;
     EXPECT_NE(tiny.find("--size"), std::string::npos) << tiny;
+}
+
+// A warning prescore gives is kept in the model's settings, naming the file without its folder:
+// the same mesh gives the same model bytes from two folders. A unit cube 20,000 units from its
+// file's origin is read in steps of 2^-9 (rounding_hint's warning); at the origin, no warning.
+TEST(Adapt, AModelKeepsItsWarningsWithTheFileNamedWithoutItsFolder) {
+    const auto cube_at = [](double offset) {
+        std::string text;
+        for (int i = 0; i < 8; ++i)
+            text += fmt::format("v {} {} {}\n", offset + (i & 1), offset + ((i >> 1) & 1), offset + ((i >> 2) & 1));
+        for (const char* f : {"1 3 2", "2 3 4", "5 6 8", "5 8 7", "1 2 6", "1 6 5", "3 7 8", "3 8 4", "1 5 7", "1 7 3",
+                              "2 4 8", "2 8 6"})
+            text += fmt::format("f {}\n", f);
+        return text;
+    };
+    testing_support::TempDir a, b;
+    std::filesystem::create_directories(b.file("deeper"));
+    MeshSettings mesh;
+    mesh.path = a.write("far_cube.obj", cube_at(2e4));
+    const Model from_a = prescore(mesh, PrescoreSettings{}, nullptr);
+    mesh.path = b.write("deeper/far_cube.obj", cube_at(2e4));
+    const Model from_b = prescore(mesh, PrescoreSettings{}, nullptr);
+    const auto settings = nlohmann::ordered_json::parse(from_a.settings_json);
+    ASSERT_EQ(settings.value("warnings", nlohmann::ordered_json::array()).size(), 1u) << settings.dump(2);
+    const std::string warning = settings["warnings"][0];
+    EXPECT_EQ(warning.rfind("far_cube.obj: its coordinates reach 2e+04 units", 0), 0u) << warning;
+    EXPECT_NE(warning.find("steps of 0.002 units"), std::string::npos) << warning;
+    EXPECT_EQ(from_a.settings_json, from_b.settings_json);
+    mesh.path = a.write("near_cube.obj", cube_at(0));
+    EXPECT_FALSE(nlohmann::ordered_json::parse(prescore(mesh, PrescoreSettings{}, nullptr).settings_json).contains("warnings"));
 }
 
 // A plate 1 m wide and 1 cm thick: at resolution 20 a tet is 7 cm, seven times the plate's
