@@ -707,8 +707,12 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     Progress progress("simulate", frames - 1);
     bool fine = false;     // substeps = "auto": the next block runs in fine steps
     uint32_t coarse = 1;   // and otherwise in this many steps
+    // Whether the object hit something: its first contact with the scene came after its first
+    // step (an object that starts resting on the ground, the chain, hit nothing by that).
+    bool touched = false, hit = false;
     auto after_step = [&] {
         guard.after_step(world);
+        if (!touched && world.touches_scene()) touched = true, hit = out.steps > 1;
         if (!landed && (in.simulate.auto_duration || in.simulate.auto_substeps) &&
             (!out.breaks.empty() || world.touches_scene())) {
             landed = true;
@@ -846,7 +850,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         spdlog::info("simulate: the object fell as one rigid body until {:.4f} s, when something came within contact "
                      "reach ([simulate] rigid_flight)",
                      world.flight_end());
-    if (out.breaks.empty() && !in.simulate.auto_substeps && stiffest * h > kStiffStepWarning)
+    if (out.breaks.empty() && hit && !in.simulate.auto_substeps && stiffest * h > kStiffStepWarning)
         warn(out.warnings,
              fmt::format("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = "
                          "{:.0f}: an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md "

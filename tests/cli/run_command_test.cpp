@@ -81,7 +81,8 @@ TEST(RunCommand, WritesEveryOutputIntoOneFolderAndSkipsWhatIsUpToDate) {
 
 // A material too strong for the drop breaks nothing; at the shot's step (h = 1/240 s) its joints'
 // omega h is far above 1, so the impact's force was resolved to a fraction of its peak, and the
-// run says which settings resolve it. The weak cube breaks and is told nothing.
+// run says which settings resolve it. The weak cube breaks and is told nothing, nor is a run that
+// ends before the cube lands.
 TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
     TempDir dir;
     const std::string shot = write_cube_shot(dir);
@@ -118,6 +119,11 @@ TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
     EXPECT_NE(stage_status(again.out, "simulate").find("(up to date)"), std::string::npos) << again.out;
     EXPECT_EQ(again.err.find("no joint broke"), std::string::npos) << again.err;
     EXPECT_NE(again.out.find("  - simulate: no joint broke"), std::string::npos) << again.out;
+    // Still in the air at the end (0.2 s of its 0.3 s fall): no impact, nothing to warn of.
+    auto falling = run_shatter({"run", shot, "-o", dir.file("falling"), "--no-progress", "--stages", "prescore,simulate",
+                                "--set", "material.strength=1e9", "--set", "simulate.duration=0.2"});
+    ASSERT_EQ(falling.exit_code, 0) << falling.out << falling.err;
+    EXPECT_EQ((falling.out + falling.err).find("no joint broke"), std::string::npos) << falling.out << falling.err;
 }
 
 TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
