@@ -345,7 +345,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     PrescoreReport& report = report_out ? *report_out : local;
     PhaseTimer timer(report);
     AutoChoices& choices = report.choices;
-    if (const std::filesystem::path folder = std::filesystem::path(mesh_settings.path).parent_path(); !folder.empty())
+    if (const std::filesystem::path folder = std::filesystem::path(mesh_settings.path).parent_path();
+        !folder.empty() && folder != folder.root_path())  // (a root, "/", would strip every slash)
         choices.folder = (folder / "").string();
 
     const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
