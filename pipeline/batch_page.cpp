@@ -75,7 +75,14 @@ std::string batch_page_html(const BatchFile& batch, const BatchResult& result) {
                                    r->exit_code, html_escape(r->error), link(dir / "console.log"));
                 continue;
             }
-            out += "<td class=\"ok\">ok</td>" + value_cell(r->summary, "/simulation/breaks", "{}") +
+            // The run's warnings (prescore's and simulate's), counted, with a link to where its page lists them.
+            size_t warned = 0;
+            for (const char* part : {"model", "simulation"})
+                if (r->summary.contains(part)) warned += r->summary[part].value("warnings", json::array()).size();
+            const std::string warnings =
+                warned == 0 ? "" : fmt::format("<br><a class=\"warned\" href=\"{}\">{} warning{}</a>", link(dir / "report.html") + "#warnings",
+                                               warned, warned == 1 ? "" : "s");
+            out += "<td class=\"ok\">ok" + warnings + "</td>" + value_cell(r->summary, "/simulation/breaks", "{}") +
                    value_cell(r->summary, "/simulation/fragments", "{}") +
                    value_cell(r->summary, "/simulation/stored_energy_J", "{:.4g}") +
                    value_cell(r->summary, "/simulation/injected_energy_J", "{:.4g}") +

@@ -21,6 +21,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/html.h"
+#include "pipeline/batch.h"
+#include "pipeline/batch_page.h"
 #include "pipeline/process.h"
 #include "pipeline/report_page.h"
 #include "render/image_diff.h"
@@ -242,6 +244,32 @@ TEST(BatchPage, IndexShowsEveryRunWithItsSummaryNumbersAndEachSweep) {
         EXPECT_TRUE(shown.contains("/simulation/fragments")) << run;
         expect_values_match(shown, json::parse(slurp(out + "/cube/" + run + "/summary.json")), run);
     }
+}
+
+// A run with warnings says how many beside its status, linking to the box at the top of its page;
+// a run without says nothing more.
+TEST(BatchPage, CountsEachRunsWarningsAndLinksToThem) {
+    BatchFile batch;
+    batch.path = "sweep.toml";
+    batch.output_dir = "out";
+    BatchJob job;
+    job.name = "cube";
+    job.shot = "cube.toml";
+    job.output_dir = "out/cube";
+    for (const char* label : {"alpha-0", "alpha-2"}) job.runs.push_back({label, label, {}, std::string("out/cube/") + label});
+    batch.jobs.push_back(job);
+    BatchResult result;
+    for (const BatchRun& run : job.runs) {
+        BatchRunResult r{"cube", run.label, run.caption, run.output_dir, 0, "", 1.0, {}};
+        r.summary = json::parse(R"({"model": {"pieces": 4}, "simulation": {"frames": 16, "fps": 30, "breaks": 3}})");
+        result.runs.push_back(r);
+    }
+    result.runs[1].summary["model"]["warnings"] = {"cube.obj: one"};
+    result.runs[1].summary["simulation"]["warnings"] = {"simulate: two"};
+    const std::string html = batch_page_html(batch, result);
+    EXPECT_NE(html.find("<a class=\"warned\" href=\"cube/alpha-2/report.html#warnings\">2 warnings</a>"), std::string::npos)
+        << html;
+    EXPECT_EQ(html.find("cube/alpha-0/report.html#warnings"), std::string::npos) << html;
 }
 
 // Two frame folders: frame_00000 the same, frame_00001 with a bright square in the actual.
