@@ -29,6 +29,15 @@ size_t sequence_length(std::string_view bytes, size_t i) {
 
 }  // namespace
 
+std::string as_utf8(std::string_view bytes) {
+    for (size_t i = 0; i < bytes.size();) {
+        const size_t n = sequence_length(bytes, i);
+        if (n == 0) return to_utf8(bytes);
+        i += n;
+    }
+    return std::string(bytes);
+}
+
 std::string to_utf8(std::string_view bytes) {
     std::string out;
     out.reserve(bytes.size());

@@ -20,6 +20,7 @@
 #include "core/shot.h"
 #include "core/stage_file.h"
 #include "core/trajectory.h"
+#include "core/utf8.h"
 #include "pipeline/encode.h"
 #include "pipeline/export_glb.h"
 #include "pipeline/instability_record.h"
@@ -76,7 +77,7 @@ std::pair<uint32_t, uint32_t> chunk_frames(uint32_t frames, uint32_t chunk, uint
 }
 
 std::string default_output_dir(const std::string& shot) {
-    return (fs::path("out") / fs::path(shot).stem()).string();
+    return (fs::path("out") / as_utf8(fs::path(shot).stem().string())).string();
 }
 
 namespace {
@@ -139,7 +140,7 @@ public:
         : options_(options),
           shot_(load_shot_or_mesh(options.shot, options.overrides)),
           dir_(options.output_dir.empty() ? default_output_dir(options.shot) : options.output_dir),
-          name_(fs::path(options.shot).stem().string()),
+          name_(as_utf8(fs::path(options.shot).stem().string())),  // (outputs named in UTF-8)
           stamps_(dir_.string()),
           cache_(options.cache_dir) {
         if (options.chunks == 0 || options.chunk >= options.chunks)
@@ -408,7 +409,8 @@ private:
         save_trajectory(file(".traj"), sim.trajectory);
         write_file_atomic(file(".breaks.jsonl"), break_log_jsonl(sim.breaks));
         write_file_atomic(file(".energy.csv"), energy_csv(sim.energy));
-        write_file_atomic(file(".instability.json"), instability_record(shot_.simulate.on_instability, sim).dump(2) + "\n");
+        write_file_atomic(file(".instability.json"),
+                          instability_record(shot_.simulate.on_instability, sim).dump(2, ' ', false, json::error_handler_t::replace) + "\n");
         spdlog::info("simulate: {} frames, {} steps, {} of {} constraints broke, {} of {} pieces asleep at the end",
                      sim.trajectory.frames(), sim.steps, sim.breaks.size(), model().constraints.size(), sim.asleep,
                      model().pieces.size());
@@ -503,8 +505,9 @@ private:
         size_t parts = 0;
         for (const Piece& p : m.pieces) parts += p.collision.size();
         json s;
-        s["shot"] = options_.shot;
-        s["overrides"] = options_.overrides;
+        s["shot"] = as_utf8(options_.shot);
+        s["overrides"] = json::array();
+        for (const std::string& o : options_.overrides) s["overrides"].push_back(as_utf8(o));
         s["model"] = {{"pieces", m.pieces.size()},
                       {"constraints", m.constraints.size()},
                       {"tets", m.mesh.tets.size()},
@@ -529,7 +532,8 @@ private:
         if (all_frames_present()) files["frames"] = "frames/frame_%05d.png";
         if (asked(Stage::Report) || fs::exists(dir_ / "report.html", ec)) files["report"] = "report.html";
         s["files"] = files;
-        write_file_atomic((dir_ / "summary.json").string(), s.dump(2) + "\n");
+        // Paths and file names as the file system has them, which need not be UTF-8: made valid.
+        write_file_atomic((dir_ / "summary.json").string(), s.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
         result_.summary = std::move(s);
     }
 

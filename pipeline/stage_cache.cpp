@@ -37,7 +37,7 @@ std::string stage_key(std::string_view stage, const nlohmann::ordered_json& inpu
     j["version"] = kVersion;
     j["program"] = program_hash();
     j["inputs"] = inputs;
-    return fmt::format("{:016x}", fnv1a64(j.dump()));
+    return fmt::format("{:016x}", fnv1a64(j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace)));
 }
 
 std::string file_hash(const std::string& path) { return fmt::format("{:016x}", fnv1a64(read_file(path))); }
@@ -69,7 +69,7 @@ void StageStamps::write(const std::string& stage, const std::string& key, const 
     j["files"] = nlohmann::ordered_json::object();
     for (const std::string& name : files) j["files"][name] = file_hash((fs::path(dir_) / name).string());
     make_directories((fs::path(dir_) / ".shatter").string());
-    write_file_atomic(path(stage), j.dump(2) + "\n");
+    write_file_atomic(path(stage), j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 void StageStamps::remove(const std::string& stage) const {

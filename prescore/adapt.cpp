@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/isolated.h"
+#include "core/utf8.h"
 #include "prescore/repair.h"
 #include "prescore/tetrahedralize.h"
 
@@ -23,6 +24,7 @@ void AutoChoices::note(std::string what, std::string why) {
 }
 
 void AutoChoices::warn(std::string text) {
+    text = as_utf8(text);  // file and material names as files give them (core/utf8.h)
     if (!folder.empty())
         for (size_t at = text.find(folder); at != std::string::npos; at = text.find(folder, at)) text.erase(at, folder.size());
     spdlog::warn("{}", text);

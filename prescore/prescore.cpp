@@ -17,6 +17,7 @@
 #include "core/model_io.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
+#include "core/utf8.h"
 #include "meshio/appearance.h"
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
@@ -144,12 +145,12 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     // the same bytes wherever they live (caching, pinned hashes).
     nlohmann::ordered_json j;
     j["mesh"] = to_json(mesh);
-    j["mesh"]["path"] = std::filesystem::path(mesh.path).filename().string();
+    j["mesh"]["path"] = as_utf8(std::filesystem::path(mesh.path).filename().string());
     j["mesh"]["fnv1a64"] = fmt::format("{:016x}", mesh_hash);
     j["prescore"] = to_json(settings);
     if (!choices.list.empty()) j["auto"] = choices.to_json();  // what prescore chose, and why
     if (!choices.warnings.empty()) j["warnings"] = choices.warnings;  // and what it warned of
-    return j.dump();
+    return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (names are as_utf8's)
 }
 
 void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity,

@@ -399,7 +399,7 @@ std::string trajectory_settings(const SimulationInput& in, const std::string& mo
     j["simulate"] = to_json(in.simulate);
     if (!chosen.empty()) j["auto"] = chosen;
     if (!warnings.empty()) j["warnings"] = warnings;
-    return j.dump();
+    return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (a collider mesh's path)
 }
 
 // Logs a warning and keeps it in `kept` (each text once).

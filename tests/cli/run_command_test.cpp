@@ -126,6 +126,28 @@ TEST(RunCommand, AStiffMaterialThatBreaksNothingIsToldHowToResolveItsImpact) {
     EXPECT_EQ((falling.out + falling.err).find("no joint broke"), std::string::npos) << falling.out << falling.err;
 }
 
+// A mesh file whose name is not UTF-8 (a Latin-1 name, as files from elsewhere may have): its
+// outputs are named in UTF-8 (the name read as Latin-1), and the model's settings, summary.json
+// and the stamps hold valid text; before, writing the model's settings JSON stopped prescore.
+TEST(RunCommand, AMeshNamedInLatin1RunsWithItsOutputsNamedInUtf8) {
+    TempDir dir;
+    const std::string mesh = dir.file("b\xe6r.obj");  // "bær" in Latin-1
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", mesh);
+    const std::string out = dir.file("out");
+    const auto r = run_shatter({"run", mesh, "-o", out, "--no-progress", "--stages", "prescore,simulate",
+                                "--set", "simulate.duration=0.3"});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(fs::exists(fs::path(out) / "b\xc3\xa6r.model"));
+    const nlohmann::json summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+    EXPECT_EQ(summary["files"]["model"], "b\xc3\xa6r.model");
+    EXPECT_EQ(fs::path(summary["shot"].get<std::string>()).filename().string(), "b\xc3\xa6r.obj");
+    // The stamps hold the names the outputs have: a second run finds every stage up to date.
+    const auto again = run_shatter({"run", mesh, "-o", out, "--no-progress", "--stages", "prescore,simulate",
+                                    "--set", "simulate.duration=0.3"});
+    ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+    EXPECT_NE(stage_status(again.out, "simulate").find("(up to date)"), std::string::npos) << again.out;
+}
+
 TEST(RunCommand, ChangingAlphaRedoesSimulateAndAfterButNotPrescore) {
     TempDir dir;
     const std::string shot = write_cube_shot(dir);

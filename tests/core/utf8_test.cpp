@@ -25,5 +25,14 @@ TEST(Utf8, Latin1BytesBecomeTheirCodePoints) {
 
 TEST(Utf8, ControlBytesBecomeQuestionMarks) { EXPECT_EQ(to_utf8(std::string("a\0b\n", 4)), "a?b?"); }
 
+// as_utf8: valid text kept whole, control characters too (a path may hold a newline); otherwise
+// what to_utf8 makes of it.
+TEST(Utf8, AsUtf8KeepsValidTextWholeAndMendsTheRest) {
+    EXPECT_EQ(as_utf8("dir\nname \xc3\xa9.obj"), "dir\nname \xc3\xa9.obj");
+    EXPECT_EQ(as_utf8("b\xe6r\n.obj"), to_utf8("b\xe6r\n.obj"));
+    EXPECT_EQ(as_utf8("b\xe6r.obj"), "b\xc3\xa6r.obj");
+    EXPECT_EQ(as_utf8(""), "");
+}
+
 }  // namespace
 }  // namespace shatter
