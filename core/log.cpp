@@ -1,5 +1,7 @@
 #include "core/log.h"
 
+#include <algorithm>
+
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace shatter {
@@ -12,6 +14,11 @@ bool setup_logging(const std::string& level) {
     logger->set_level(lvl);
     spdlog::set_default_logger(logger);
     return true;
+}
+
+void warn_and_keep(std::vector<std::string>& kept, std::string text) {
+    spdlog::warn("{}", text);
+    if (std::find(kept.begin(), kept.end(), text) == kept.end()) kept.push_back(std::move(text));
 }
 
 }  // namespace shatter

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/isolated.h"
+#include "core/log.h"
 #include "core/utf8.h"
 #include "prescore/repair.h"
 #include "prescore/tetrahedralize.h"
@@ -27,8 +28,7 @@ void AutoChoices::warn(std::string text) {
     text = as_utf8(text);  // file and material names as files give them (core/utf8.h)
     if (!folder.empty())
         for (size_t at = text.find(folder); at != std::string::npos; at = text.find(folder, at)) text.erase(at, folder.size());
-    spdlog::warn("{}", text);
-    if (std::find(warnings.begin(), warnings.end(), text) == warnings.end()) warnings.push_back(std::move(text));
+    warn_and_keep(warnings, std::move(text));
 }
 
 nlohmann::ordered_json AutoChoices::to_json() const {

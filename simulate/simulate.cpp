@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "core/material_presets.h"
 #include "core/progress.h"
 #include "core/stage_file.h"
@@ -402,12 +403,6 @@ std::string trajectory_settings(const SimulationInput& in, const std::string& mo
     return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (a collider mesh's path)
 }
 
-// Logs a warning and keeps it in `kept` (each text once).
-void warn(std::vector<std::string>& kept, std::string text) {
-    spdlog::warn("{}", text);
-    if (std::find(kept.begin(), kept.end(), text) == kept.end()) kept.push_back(std::move(text));
-}
-
 void record(const BulletWorld& world, Trajectory& t) {
     for (uint32_t p = 0; p < world.pieces(); ++p) t.poses.push_back(world.piece_pose(p));
     for (uint32_t p = 0; p < world.props(); ++p) t.poses.push_back(world.prop_pose(p));
@@ -431,7 +426,7 @@ bool check_stability(BulletWorld& world, const InstabilityGuard& guard, double i
     }
     if (out.clamps++ == 0) {
         out.first_clamp = InstabilityGuard::describe_runaway(e, world, out.breaks, &out.first_clamp_at);
-        warn(out.warnings, "simulate: clamping velocities (on_instability = clamp): " + out.first_clamp);
+        warn_and_keep(out.warnings, "simulate: clamping velocities (on_instability = clamp): " + out.first_clamp);
     }
     world.scale_piece_velocities(std::sqrt(e.limit / e.kinetic));
     return true;
@@ -500,11 +495,11 @@ void warn_still_moving(const BulletWorld& world, const std::vector<double>& radi
                                neighbours[0], pivots.size() == 1 ? "one joint" : fmt::format("{} joints", pivots.size()),
                                pivots.size() == 1 ? "ball joint" : "hinge");
     }
-    warn(kept, fmt::format("simulate: the pieces were still moving at max_duration = {:g} s (duration = \"auto\"): "
-                           "piece {} at {:.3g} m/s and {:.3g} rad/s{}. The movie runs to max_duration; a fixed "
-                           "[simulate] duration ends it sooner",
-                           s.max_duration, worst, world.piece_velocity(worst).norm(),
-                           world.piece_angular_velocity(worst).norm(), held));
+    warn_and_keep(kept, fmt::format("simulate: the pieces were still moving at max_duration = {:g} s (duration = "
+                                    "\"auto\"): piece {} at {:.3g} m/s and {:.3g} rad/s{}. The movie runs to "
+                                    "max_duration; a fixed [simulate] duration ends it sooner",
+                                    s.max_duration, worst, world.piece_velocity(worst).norm(),
+                                    world.piece_angular_velocity(worst).norm(), held));
 }
 
 }  // namespace
@@ -596,15 +591,16 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                                kIterativeIslandRatio));
         } else {
             const bool joined = ratio > kIterativeMassRatio;
-            warn(warned, fmt::format("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to "
-                                     "{}), but piece {} is {:.3g} times as heavy as piece {} {}: iterative joints may "
-                                     "break or drift apart where they should hold from a mass ratio of {:g} "
-                                     "(docs/accuracy.md, \"The stability map\"). [simulate] joints = \"direct\" holds "
-                                     "them, at about 2 to 5 times the simulation's time at 100 to 1,000 pieces",
-                                     model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy,
-                                     joined ? ratio : island, joined ? light : island_light,
-                                     joined ? "joined to it" : "in its island of joined pieces",
-                                     joined ? kIterativeMassRatio : kIterativeIslandRatio));
+            warn_and_keep(warned,
+                          fmt::format("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to "
+                                      "{}), but piece {} is {:.3g} times as heavy as piece {} {}: iterative joints may "
+                                      "break or drift apart where they should hold from a mass ratio of {:g} "
+                                      "(docs/accuracy.md, \"The stability map\"). [simulate] joints = \"direct\" "
+                                      "holds them, at about 2 to 5 times the simulation's time at 100 to 1,000 pieces",
+                                      model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy,
+                                      joined ? ratio : island, joined ? light : island_light,
+                                      joined ? "joined to it" : "in its island of joined pieces",
+                                      joined ? kIterativeMassRatio : kIterativeIslandRatio));
         }
     }
     if (in.material.stiffen && !direct) {
@@ -714,7 +710,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         guard.after_step(world);
         if (!touched && world.touches_scene()) touched = true, hit = out.steps > 1;
         if (!landed && (in.simulate.auto_duration || in.simulate.auto_substeps) &&
-            (!out.breaks.empty() || world.touches_scene())) {
+            (!out.breaks.empty() || touched)) {
             landed = true;
             rest = rest_speed_landed(model);
             hold_from = frame;
@@ -851,7 +847,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
                      "reach ([simulate] rigid_flight)",
                      world.flight_end());
     if (out.breaks.empty() && hit && !in.simulate.auto_substeps && stiffest * h > kStiffStepWarning)
-        warn(out.warnings,
+        warn_and_keep(out.warnings,
              fmt::format("simulate: no joint broke, and at this step (h = {:.3g} s) the stiffest joint has omega h = "
                          "{:.0f}: an impact's peak force is resolved to about 1/{:.0f} of itself (docs/physics.md "
                          "section 7). For a stiff material, [simulate] substeps = \"auto\" and joints = \"direct\" "
@@ -861,7 +857,7 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     // an impact's pushes (docs/physics.md section 5a) are not the solve's to fix.
     const ResidualPeak& r = out.residual_before_break;
     if (r.residual > kResidualTolerance)
-        warn(out.warnings,
+        warn_and_keep(out.warnings,
              fmt::format("simulate: the joints' forces do not match their stretch: up to {:.1f}% of the strength off "
                          "(constraint {}, pieces {} and {}, at {:.4f} s, before the first break; tolerance {:g}%): the "
                          "solve, or a contact's push, left them apart, so a break's energy (read from its force) is "
