@@ -578,9 +578,10 @@ std::string format_run_summary(const RunResult& r) {
             if (list->contains("auto"))
                 for (const json& c : (*list)["auto"]) chosen += (chosen.empty() ? "" : "; ") + c.value("what", std::string());
         if (!chosen.empty()) out += fmt::format("chosen:   {} (why: report.html, summary.json)\n", chosen);
-        out += fmt::format("fracture: {} breaks -> {} fragments; {:.4g} J stored at the breaks, {:.4g} J injected "
+        const size_t breaks = sim["breaks"].get<size_t>(), fragments = sim["fragments"].get<size_t>();
+        out += fmt::format("fracture: {} break{} -> {} fragment{}; {:.4g} J stored at the breaks, {:.4g} J injected "
                            "(alpha {:g}); peak piece speed {:.3g} m/s{}\n",
-                           sim["breaks"].get<size_t>(), sim["fragments"].get<size_t>(), sim["stored_energy_J"].get<double>(),
+                           breaks, breaks == 1 ? "" : "s", fragments, fragments == 1 ? "" : "s", sim["stored_energy_J"].get<double>(),
                            sim["injected_energy_J"].get<double>(), r.summary["alpha"].get<double>(),
                            sim["peak_piece_speed_m_per_s"].get<double>(),
                            sim["complete"].get<bool>() ? "" : " (INCOMPLETE: the simulation went unstable)");
@@ -591,7 +592,7 @@ std::string format_run_summary(const RunResult& r) {
         // when every crack opened.)
         const double held = sim.value("held_energy_J", 0.0);
         const bool holds = held > 1e-9 * alpha * stored;
-        if (sim["breaks"].get<size_t>() > 0)
+        if (breaks > 0)
             out += fmt::format("books:    stored {:.4g} J x alpha {:g} = {:.4g} J; injected {:.4g} J{}{}\n", stored, alpha,
                                alpha * stored, injected,
                                holds ? fmt::format(" + {:.4g} J held in cracks that did not open", held) : std::string(),
