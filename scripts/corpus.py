@@ -90,10 +90,19 @@ def prescore(shatter, workdir, mesh):
             "tets": m.group(2) if m else "", "auto": auto, "error": error}
 
 
+def run_warnings(summary):
+    """The warnings prescore and simulate kept in their files (summary.json's model.warnings and
+    simulation.warnings)."""
+    return summary["model"].get("warnings", []) + summary["simulation"].get("warnings", [])
+
+
+def run_dir(workdir, mesh):
+    return os.path.join(workdir, "runs", re.sub(r"[^A-Za-z0-9._-]", "_", os.path.relpath(mesh, "/")))
+
+
 def run_mesh(shatter, workdir, mesh):
     """`shatter run MESH` into WORKDIR/runs/NAME; keeps summary.json, run.log, the movie and the report."""
-    name = re.sub(r"[^A-Za-z0-9._-]", "_", os.path.relpath(mesh, "/"))
-    out = os.path.join(workdir, "runs", name)
+    out = run_dir(workdir, mesh)
     os.makedirs(os.path.dirname(out), exist_ok=True)
     start = time.monotonic()
     try:
@@ -118,7 +127,8 @@ def run_mesh(shatter, workdir, mesh):
         r.update(pieces=summary["model"]["pieces"], tets=summary["model"]["tets"], alpha=summary["alpha"],
                  breaks=sim["breaks"], fragments=sim["fragments"], stored=sim["stored_energy_J"],
                  injected=sim["injected_energy_J"], held=sim.get("held_energy_J", 0.0), frames=sim["frames"],
-                 movie=os.path.exists(os.path.join(out, summary["files"].get("mp4", "-"))))
+                 movie=os.path.exists(os.path.join(out, summary["files"].get("mp4", "-"))),
+                 warnings=run_warnings(summary))
     except (OSError, KeyError, ValueError):
         r["movie"] = False
     shutil.rmtree(os.path.join(out, "frames"), ignore_errors=True)  # the movie keeps them
@@ -208,6 +218,13 @@ def held_J(r):
 
 def write_run_table(results, path, workdir):
     ok = [r for r in results if verdict(r) == "ok"]
+    for r in ok:  # a journal written before runs kept their warnings: read them from the run's summary
+        if "warnings" not in r:
+            try:
+                with open(os.path.join(run_dir(workdir, r["file"]), "summary.json")) as f:
+                    r["warnings"] = run_warnings(json.load(f))
+            except (OSError, KeyError, ValueError):
+                r["warnings"] = []
     failed = [r for r in results if verdict(r).startswith("FAIL")]
     ratios = [books_ratio(r) for r in ok if r["alpha"] > 0 and r["stored"] > 0]
     seen = [r for r in ok if "in_view_first" in r]
@@ -236,6 +253,7 @@ def write_run_table(results, path, workdir):
            100 * max((r.get("held", 0) / (r["alpha"] * r["stored"]) for r in ok if r["alpha"] > 0 and r["stored"] > 0),
                      default=0)),
         "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
+        "| runs with warnings (summary.json: model.warnings, simulation.warnings) | %d |" % sum(bool(r["warnings"]) for r in ok),
         "| every piece in view in the first frame | %d of %d |" % (sum(r["in_view_first"] == 100 for r in seen), len(seen)),
         "| at least 90%% of the pieces in view in every frame | %d of %d |" % (sum(r["in_view_least"] >= 90 for r in seen),
                                                                               len(seen)),
@@ -243,23 +261,23 @@ def write_run_table(results, path, workdir):
         "",
         "| file | result | pieces | breaks | fragments | stored (J) | (injected + held) / (alpha x stored) | held (J) "
         "| in view: first, least (%) "
-        "| still at end (s) | time (s) |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| still at end (s) | warnings | time (s) |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in results:
         f = r["file"]
         shown = (os.path.relpath(f, workdir) if f.startswith(workdir) else f).replace("|", "\\|")
         result = verdict(r)
         if result != "ok":
-            lines.append("| %s | %s | | | | | | | | | %.1f |" % (
+            lines.append("| %s | %s | | | | | | | | | | %.1f |" % (
                 shown, (result + (": " + short(r["error"]) if r["error"] else "")).replace("|", "\\|"), r["seconds"]))
             continue
         ratio = "%.4f" % books_ratio(r) if r["alpha"] > 0 and r["stored"] > 0 else "-"
         view = "%d, %d" % (r["in_view_first"], r["in_view_least"]) if "in_view_first" in r else "-"
         still = "%.2f" % r["still_s"] if "still_s" in r else "-"
-        lines.append("| %s | ok | %s | %d | %d | %.3g | %s | %.3g | %s | %s | %.1f |" % (
+        lines.append("| %s | ok | %s | %d | %d | %.3g | %s | %.3g | %s | %s | %s | %.1f |" % (
             shown, r["pieces"], r["breaks"], r["fragments"], r["stored"], ratio, held_J(r), view, still,
-            r["seconds"]))
+            "; ".join(short(w, 200) for w in r["warnings"]).replace("|", "\\|").replace("\n", " ") or "-", r["seconds"]))
     with open(path + ".tmp", "w") as out:
         out.write("\n".join(lines) + "\n")
     os.replace(path + ".tmp", path)
