@@ -204,6 +204,26 @@ double file_units(const aiScene& scene, const std::string& path) {
     return 0;
 }
 
+// LoadedMesh::plain, from the scene as read, by Appearance::plain's rule as read_material reads
+// a material (meshio/appearance.cpp): no mesh with vertex colours, no material with a texture
+// (found or not: one not found is a warning), and every material assimp's default or white.
+bool shows_only_its_shape(const aiScene& scene) {
+    for (unsigned i = 0; i < scene.mNumMeshes; ++i)
+        if (scene.mMeshes[i]->HasVertexColors(0)) return false;
+    for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
+        const aiMaterial& m = *scene.mMaterials[i];
+        for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})
+            if (m.GetTextureCount(type) > 0) return false;
+        aiString name;
+        if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && std::string(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME) continue;
+        aiColor4D c(1, 1, 1, 1);
+        if (m.Get(AI_MATKEY_BASE_COLOR, c) != AI_SUCCESS) m.Get(AI_MATKEY_COLOR_DIFFUSE, c);
+        const auto white = [](float x) { return !std::isfinite(x) || x >= 1; };  // read_material clamps
+        if (!white(c.r) || !white(c.g) || !white(c.b)) return false;
+    }
+    return true;
+}
+
 // assimp's import and our merge, in this process.
 LoadedMesh import_in_process(const std::string& path) {
     Assimp::Importer importer;
@@ -229,6 +249,8 @@ LoadedMesh import_in_process(const std::string& path) {
                               " meshes)",
                           "give a file with a surface mesh; points and lines are ignored");
     }
+    // Read before the pass below removes colours and materials.
+    const bool plain = shows_only_its_shape(*scene);
     // The components shatter does not use (animations, bones, cameras, ...) go first, in a pass of
     // their own: assimp's validation refuses some animated or skinned files (.b3d, .fbx, .dae)
     // for their animation data alone, and only the static mesh matters here.
@@ -242,7 +264,7 @@ LoadedMesh import_in_process(const std::string& path) {
 
     Merger merger(path);
     if (scene->mRootNode != nullptr) merger.add_node(*scene, *scene->mRootNode, Mat4::Identity());
-    LoadedMesh loaded{merger.take(), file_units(*scene, path), merger.rounding()};
+    LoadedMesh loaded{merger.take(), file_units(*scene, path), merger.rounding(), plain};
     if (loaded.mesh.triangles.empty()) {
         throw_input_error(path, "mesh file has no triangles (only points and lines)",
                           "give a file with a surface mesh; points and lines are ignored");
@@ -262,6 +284,7 @@ std::string serialize(const LoadedMesh& loaded) {
     out.append(reinterpret_cast<const char*>(&loaded.metres_per_unit), 8);
     for (const double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
         out.append(reinterpret_cast<const char*>(x), 8);
+    out.push_back(loaded.plain ? 1 : 0);
     out.append(reinterpret_cast<const char*>(&nv), 8);
     for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
     out.append(reinterpret_cast<const char*>(&nt), 8);
@@ -278,6 +301,7 @@ LoadedMesh deserialize(const std::string& bytes) {
     at += 8;
     for (double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
         std::memcpy(x, bytes.data() + at, 8), at += 8;
+    loaded.plain = bytes[at++] != 0;
     std::memcpy(&nv, bytes.data() + at, 8);
     at += 8;
     m.vertices.resize(nv);

@@ -43,6 +43,10 @@ struct LoadedMesh {
     TriangleMesh mesh;           // in the file's units
     double metres_per_unit = 0;  // what the file says a unit is (unit: m); 0 when its format has no units
     FloatRounding rounding;
+    // The file shows nothing beyond its shape: no vertex colours, no texture, every material
+    // white or assimp's default (a file that names none: an OBJ without a library, STL, most PLY).
+    // Its appearance (meshio/appearance.h) would be plain, so a second reading can be skipped.
+    bool plain = false;
 };
 
 // A step of the reading's rounding past this fraction of the mesh's size is worth a warning: the

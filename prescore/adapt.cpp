@@ -114,8 +114,14 @@ TetMesh deserialize(const std::string& bytes) {
     return m;
 }
 
+}  // namespace
+
+double mesh_seconds(size_t surface_triangles) { return kMeshSeconds + kMeshSecondsPerTriangle * double(surface_triangles); }
+
+namespace {
+
 // Mesh_3 at one resolution, in a child process (core/isolated.h): an empty mesh when it made
-// no tets, nullopt when it hit its vertex budget, ran past kMeshSeconds, or crashed twice (the
+// no tets, nullopt when it hit its vertex budget, ran past mesh_seconds, or crashed twice (the
 // second time without protected sharp creases, where its crashes were seen: elk.off).
 std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrapped, double diagonal,
                                           double resolution) {
@@ -138,7 +144,7 @@ std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrap
                         return "0";
                     }
                 },
-                kMeshSeconds);
+                mesh_seconds(surface.triangles.size()));
         } catch (const IsolatedFailure& f) {
             spdlog::info("tetrahedralize: Mesh_3 {} at resolution {:g}{}", f.timed_out ? "did not finish" : "crashed",
                          resolution, f.timed_out ? "" : fmt::format(" ({})", f.what()));
@@ -164,8 +170,9 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
         fit.wrapped = true;
     };
     const auto budget_why = [&](double r) {
-        return fmt::format("Mesh_3 did not finish within its budget ({} vertices, {:g} s) at resolution {:g} on a "
-                           "surface of {} triangles", kMaxMeshVertices, kMeshSeconds, r, fit.surface_check.triangles);
+        return fmt::format("Mesh_3 did not finish within its budget ({} vertices, {:.3g} s) at resolution {:g} on a "
+                           "surface of {} triangles", kMaxMeshVertices, mesh_seconds(fit.surface.triangles.size()), r,
+                           fit.surface_check.triangles);
     };
     const auto refuse_budget = [&](double r) {
         throw_input_error(path, budget_why(r) + fmt::format(" (the mesh's bounding-box diagonal is {:.4g} m)", diagonal),

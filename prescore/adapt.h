@@ -13,8 +13,8 @@
 //               (an open or flat sheet becomes a slab, a double-sided wrap of a thin wall one
 //               solid); thicker and coarser, twice at most, when that meshing exceeds the budget
 //               or makes no tets;
-//   repair      a surface whose meshing does not end within the vertex budget and kMeshSeconds
-//               (heavy self-intersections) is alpha-wrapped first;
+//   repair      a surface whose meshing does not end within the vertex budget and
+//               mesh_seconds (heavy self-intersections) is alpha-wrapped first;
 //   slivers     tet clusters smaller than kSliverFraction of the volume and kSliverOfLargest of
 //               the largest cluster are not pieces of their own: each joins the piece nearest to
 //               it (a piece may then be two clusters that move as one rigid body); a heap of
@@ -48,7 +48,14 @@ inline constexpr double kThickenOffset = 0.75;  // wrap offset when thickening (
 inline constexpr double kSliverFraction = 0.01;  // clusters below this share of the volume join a neighbour
 inline constexpr double kSliverOfLargest = 0.1;  // ... when also below this share of the largest cluster's
 inline constexpr size_t kMaxBodies = 1000;      // most separate bodies made pieces by themselves
-inline constexpr double kMeshSeconds = 15;      // one Mesh_3 call past this is stopped (unit: s)
+// One Mesh_3 call is stopped past mesh_seconds(surface triangles): kMeshSeconds plus
+// kMeshSecondsPerTriangle for each triangle of the surface it meshes. Its cost grows with the
+// surface (its search tree; a sphere of 6 million triangles: 11.4 s, where 2,000 take 0.1 s), and
+// a deadline is only a stop for a run that does not end (heavy self-intersections): a surface
+// whose meshing takes near a fixed deadline would give another model on a busier machine.
+inline constexpr double kMeshSeconds = 15;              // (unit: s)
+inline constexpr double kMeshSecondsPerTriangle = 5e-6;  // (unit: s), ~2.6 times the sphere's
+double mesh_seconds(size_t surface_triangles);
 
 struct AutoChoice {
     std::string what;  // e.g. "resolution 20 -> 32"

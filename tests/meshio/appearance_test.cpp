@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "meshio/appearance.h"
 #include "meshio/mesh_load.h"
@@ -150,6 +153,38 @@ TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
     EXPECT_EQ(image_mime("\xff\xd8\xff\xe0", "x"), "image/jpeg");
     EXPECT_EQ(image_mime("whatever", "a/b/C.TGA"), "image/x-tga");
     EXPECT_EQ(image_mime("whatever", "c.xyz"), "");
+}
+
+// prescore reads a file's appearance a second time only when load_mesh_file did not find it plain
+// (LoadedMesh::plain: no vertex colours, no texture, materials white or assimp's default). That
+// must never skip anything: every file it calls plain has a plain appearance and no warnings, and
+// the files that show something (a texture, vertex colours, a grey or named material, a texture
+// not found) are not plain.
+TEST(Appearance, AFileTheReaderCallsPlainShowsNothingBeyondItsShape) {
+    const std::vector<std::pair<std::string, bool>> files = {
+        {"/usr/share/glmark2/models/bunny.obj", true},         // no material library
+        {kModels + "/STL/Wuson.stl", true},
+        {kModels + "/PLY/Wuson.ply", true},
+        {kModels + "/OBJ/box.obj", false},                    // a material 'Default', grey
+        {kModels + "/OBJ/cube_with_vertexcolors.obj", false},  // vertex colours
+        {kModels + "/OBJ/cube_usemtl.obj", false},             // named materials
+        {kModels + "/OBJ/spider.obj", false},                  // textures, some not beside it
+        {kBox, false},
+        {kDuck, false},
+    };
+    size_t checked = 0;
+    for (const auto& [path, expected] : files) {
+        if (!have(path)) continue;
+        ++checked;
+        const bool plain = load_mesh_file(path).plain;
+        EXPECT_EQ(plain, expected) << path;
+        const Appearance a = load_appearance(path);
+        if (plain) {
+            EXPECT_TRUE(a.plain()) << path;
+            EXPECT_TRUE(a.warnings.empty()) << path;
+        }
+    }
+    if (checked == 0) GTEST_SKIP() << "none of the files is installed (fix: scripts/install-deps.sh)";
 }
 
 }  // namespace
