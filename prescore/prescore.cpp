@@ -40,6 +40,9 @@ namespace shatter {
 
 namespace {
 
+// A mesh file larger than this is said to be read and checked, since both take a while (unit: bytes).
+constexpr size_t kLargeMeshFileBytes = 50'000'000;
+
 class PhaseTimer {
 public:
     explicit PhaseTimer(PrescoreReport& report) : report_(report), start_(std::chrono::steady_clock::now()) {}
@@ -350,8 +353,21 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         !folder.empty() && folder != folder.root_path())  // (a root, "/", would strip every slash)
         choices.folder = (folder / "").string();
 
-    const uint64_t mesh_hash = fnv1a64(read_file(mesh_settings.path, "mesh file"));
+    uint64_t mesh_hash = 0;
+    size_t mesh_file_bytes = 0;
+    {
+        const std::string bytes = read_file(mesh_settings.path, "mesh file");
+        mesh_hash = fnv1a64(bytes);
+        mesh_file_bytes = bytes.size();
+    }
+    // A large file is read and checked for tens of seconds (6 million triangles, 240 MB: ~20 s
+    // each): say what is happening before it.
+    const bool large = mesh_file_bytes > kLargeMeshFileBytes;
+    if (large) spdlog::info("mesh: reading {} ({:.0f} MB)", mesh_settings.path, double(mesh_file_bytes) / 1e6);
     LoadedMesh loaded = load_mesh_file(mesh_settings.path);
+    if (large)
+        spdlog::info("mesh: {} triangles read; checking them (closed, manifold, oriented, crossing)",
+                     loaded.mesh.triangles.size());
     if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
         choices.warn(fmt::format("{}: {}", mesh_settings.path, hint));
     if (!mesh_settings.size) {
