@@ -97,13 +97,17 @@ void check_topology(const TriangleMesh& mesh, MeshCheck& check) {
     check.nonmanifold_vertices = size_t(std::count_if(fans.begin(), fans.end(), [](uint32_t f) { return f > 1; }));
 }
 
+void bounding_box(const TriangleMesh& mesh, Vec3& lo, Vec3& hi) {
+    lo = hi = mesh.vertices[0];
+    for (const Vec3& v : mesh.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+}
+
 void check_measures(const TriangleMesh& mesh, MeshCheck& check) {
     if (!mesh.vertices.empty()) {
-        check.bbox_min = check.bbox_max = mesh.vertices[0];
-        for (const Vec3& v : mesh.vertices) {
-            check.bbox_min = check.bbox_min.cwiseMin(v);
-            check.bbox_max = check.bbox_max.cwiseMax(v);
-        }
+        bounding_box(mesh, check.bbox_min, check.bbox_max);
         check.diagonal = (check.bbox_max - check.bbox_min).norm();
     }
     for (const Tri& t : mesh.triangles) {
@@ -115,6 +119,13 @@ void check_measures(const TriangleMesh& mesh, MeshCheck& check) {
 }
 
 }  // namespace
+
+double bounding_diagonal(const TriangleMesh& mesh) {
+    if (mesh.vertices.empty()) return 0;
+    Vec3 lo, hi;
+    bounding_box(mesh, lo, hi);
+    return (hi - lo).norm();
+}
 
 MeshCheck check_mesh(const TriangleMesh& mesh, bool find_self_intersections) {
     MeshCheck check;

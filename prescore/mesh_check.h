@@ -50,6 +50,10 @@ struct MeshCheck {
 // them (MeshCheck::self_intersections stays 0).
 MeshCheck check_mesh(const TriangleMesh& mesh, bool find_self_intersections = true);
 
+// The diagonal of the box around every vertex of `mesh` (MeshCheck::diagonal), without the rest
+// of the check (whose edge sort takes seconds on millions of triangles); 0 for no vertices.
+double bounding_diagonal(const TriangleMesh& mesh);
+
 // Number of intersecting triangle pairs (CGAL::Polygon_mesh_processing::self_intersections).
 // Degenerate triangles are not counted here (check_mesh counts them).
 size_t count_self_intersections(const TriangleMesh& mesh);

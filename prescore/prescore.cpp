@@ -375,7 +375,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         // in the units given (or the file's) before any automatic size.
         const double given = mesh_settings.scale ? *mesh_settings.scale
                                                  : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
-        refuse_out_of_scale(check_mesh(loaded.mesh, false).diagonal * given, mesh_settings.path);
+        refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, mesh_settings.path);
     }
     report.scale = choose_scale(loaded.mesh, loaded.metres_per_unit, mesh_settings, choices);
     for (Vec3& v : loaded.mesh.vertices) v *= report.scale;
