@@ -181,5 +181,18 @@ TEST(AlphaWrap, OpenCubeWithAlphaBelowTheHoleIsWrappedAsAThinShell) {
     EXPECT_LT(c.volume, 0.2);
 }
 
+// The box alone (prescore's size check before the mesh is sized): two unit cubes 2 apart along x
+// span 3 x 1 x 1, diagonal sqrt(11), and a vertex no triangle uses counts too, as in check_mesh.
+TEST(CheckMesh, TheBoundingDiagonalAloneIsTheChecksDiagonal) {
+    TriangleMesh mesh;
+    add_cube(mesh);
+    add_cube(mesh, Vec3(2, 0, 0));
+    EXPECT_NEAR(bounding_diagonal(mesh), std::sqrt(11.0), 1e-12);
+    mesh.vertices.push_back(Vec3(0, 0, -3));
+    EXPECT_NEAR(bounding_diagonal(mesh), std::sqrt(9.0 + 1.0 + 16.0), 1e-12);
+    EXPECT_EQ(bounding_diagonal(mesh), check_mesh(mesh, false).diagonal);
+    EXPECT_EQ(bounding_diagonal(TriangleMesh{}), 0.0);
+}
+
 }  // namespace
 }  // namespace shatter
