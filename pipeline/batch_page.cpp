@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/html.h"
+#include "pipeline/run_metrics.h"
 
 namespace shatter {
 
@@ -76,9 +77,7 @@ std::string batch_page_html(const BatchFile& batch, const BatchResult& result) {
                 continue;
             }
             // The run's warnings (prescore's and simulate's), counted, with a link to where its page lists them.
-            size_t warned = 0;
-            for (const char* part : {"model", "simulation"})
-                if (r->summary.contains(part)) warned += r->summary[part].value("warnings", json::array()).size();
+            const size_t warned = summary_warnings(r->summary).size();
             const std::string warnings =
                 warned == 0 ? "" : fmt::format("<br><a class=\"warned\" href=\"{}\">{} warning{}</a>", link(dir / "report.html") + "#warnings",
                                                warned, warned == 1 ? "" : "s");

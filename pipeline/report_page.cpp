@@ -12,6 +12,7 @@
 #include "core/html.h"
 #include "core/shot.h"
 #include "pipeline/process.h"
+#include "pipeline/run_metrics.h"
 #include "pipeline/stage_cache.h"
 
 namespace shatter {
@@ -306,10 +307,8 @@ std::string report_page_html(const ReportPageInput& in) {
                "from it end there (see the stability rows below and run.log).</p>\n";
     // What prescore and simulate warned of (the model's and the trajectory's own), where it is seen.
     std::string warned;
-    for (const char* stage : {"model", "simulation"})
-        for (const json& w : s[stage].value("warnings", json::array()))
-            warned += fmt::format("<li><span class=\"muted\">{}:</span> {}</li>\n",
-                                  stage == std::string("model") ? "prescore" : "simulate", html_escape(w.get<std::string>()));
+    for (const StageWarning& w : summary_warnings(s))
+        warned += fmt::format("<li><span class=\"muted\">{}:</span> {}</li>\n", w.stage, html_escape(w.text));
     if (!warned.empty()) out += "<div class=\"note\" id=\"warnings\"><strong>Warnings</strong>\n<ul>\n" + warned + "</ul>\n</div>\n";
 
     out += media_section(files, in.name);

@@ -165,10 +165,7 @@ public:
         write_report_times(dir_.string(), result_.stages);
         // The stages' own warnings first, from their files (also those of stages that were up to
         // date), then what this run logged besides.
-        if (!result_.summary.empty())
-            for (const char* part : {"model", "simulation"})
-                for (const json& w : result_.summary[part].value("warnings", json::array()))
-                    result_.warnings.push_back(w.get<std::string>());
+        for (StageWarning& w : summary_warnings(result_.summary)) result_.warnings.push_back(std::move(w.text));
         for (std::string& w : warnings->taken())
             if (std::find(result_.warnings.begin(), result_.warnings.end(), w) == result_.warnings.end())
                 result_.warnings.push_back(std::move(w));

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,5 +21,27 @@ namespace shatter {
 //  "peak_piece_speed_m_per_s"}. Null where there is no break.
 nlohmann::ordered_json simulation_facts(const Model& model, const Trajectory& trajectory, const std::string& breaks_jsonl,
                                         const std::string& energy_csv);
+
+// A warning a run's stage kept in its file, as summary.json lists it.
+struct StageWarning {
+    const char* stage;  // "prescore" or "simulate"
+    std::string text;
+};
+
+// The warnings of a run's summary.json (either JSON type: the pages read it as either): prescore's
+// under "model"/"warnings", then simulate's under "simulation"/"warnings", in order.
+template <class Json>
+std::vector<StageWarning> summary_warnings(const Json& summary) {
+    std::vector<StageWarning> out;
+    for (const auto& [part, stage] : {std::pair{"model", "prescore"}, std::pair{"simulation", "simulate"}}) {
+        const auto p = summary.find(part);
+        if (p == summary.end()) continue;
+        const auto w = p->find("warnings");
+        if (w == p->end()) continue;
+        for (const auto& text : *w)
+            if (text.is_string()) out.push_back({stage, text.template get<std::string>()});
+    }
+    return out;
+}
 
 }  // namespace shatter
