@@ -201,10 +201,11 @@ private:
     bool asked(Stage s) const {
         return options_.stages.empty() || std::find(options_.stages.begin(), options_.stages.end(), s) != options_.stages.end();
     }
-    // True when a stage after `s` is asked for (and so needs the outputs of `s`).
+    // True when a stage after `s` that reads the outputs of `s` is asked for: every later stage
+    // reads the model and the trajectory, only those that need the frames read render's.
     bool needed_later(Stage s) const {
         for (Stage later : kAllStages)
-            if (later > s && asked(later)) return true;
+            if (later > s && asked(later) && (s != Stage::Render || step_of(later).needs_frames)) return true;
         return false;
     }
     StageReport& report(Stage s) {
@@ -218,8 +219,9 @@ private:
     // A stage that was not asked for must be up to date for the stages after it.
     [[noreturn]] void missing(Stage s, const std::string& what) const {
         throw Error(ExitCode::BadInput,
-                    fmt::format("{}: {} is missing or out of date (fix: run its stage first: shatter run {} -o {} "
-                                "--stages {})", dir_.string(), what, options_.shot, dir_.string(), to_string(s)));
+                    fmt::format("{}: {} {} missing or out of date (fix: run its stage first: shatter run {} -o {} "
+                                "--stages {})", dir_.string(), what, s == Stage::Render ? "are" : "is", options_.shot,
+                                dir_.string(), to_string(s)));
     }
 
     // ---- the run as a list of stages, run by one loop (run_step)
@@ -596,10 +598,16 @@ std::string format_run_summary(const RunResult& r) {
                                alpha * stored > 0
                                    ? fmt::format(" ({:.3f} x alpha x stored)", (injected + held) / (alpha * stored))
                                    : std::string());
-        if (sim.contains("energy_books_drift_J"))
+        if (sim.contains("energy_books_drift_J")) {
+            // The plot of those books, where the run made one.
+            const json& files = r.summary.value("files", json::object());
+            const std::string plot = files.contains("energy.png")
+                                         ? fmt::format(" ({}/{})", r.output_dir, files["energy.png"].get<std::string>())
+                                         : std::string();
             out += fmt::format("energy:   kinetic + potential + elastic + removed + damped + contacts + integration - "
-                               "injected - driven stays within {:.2g} J over the run (OUT.energy.png)\n",
-                               sim["energy_books_drift_J"].get<double>());
+                               "injected - driven stays within {:.2g} J over the run{}\n",
+                               sim["energy_books_drift_J"].get<double>(), plot);
+        }
         out += format_instability(r.summary.at("instability"));
     }
     out += fmt::format("results:  {}/\n", r.output_dir);
