@@ -158,12 +158,13 @@ std::string describe(const MeshCheck& c) {
     return s.str();
 }
 
-void orient_outward(TriangleMesh& mesh) {
+bool orient_outward(TriangleMesh& mesh) {
     double volume = 0;
     for (const Tri& t : mesh.triangles)
         volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-    if (volume >= 0) return;
+    if (volume >= 0) return false;
     for (Tri& t : mesh.triangles) std::swap(t[1], t[2]);
+    return true;
 }
 
 bool can_tetrahedralize(const MeshCheck& c, std::string* why) {

@@ -64,8 +64,9 @@ std::string describe(const MeshCheck& check);
 
 // Flips every triangle when the mesh's total signed volume is negative (an inside-out file).
 // The whole mesh is flipped, not each component, so that a hollow object's inner shell (whose
-// volume is negative by design) keeps its orientation relative to the outer shell.
-void orient_outward(TriangleMesh& mesh);
+// volume is negative by design) keeps its orientation relative to the outer shell. True when it
+// flipped them.
+bool orient_outward(TriangleMesh& mesh);
 
 // True when Mesh_3 can fill the mesh with tets: closed, manifold, oriented, volume > 0 and no
 // degenerate triangles. Otherwise false, and *why (if not null) says what is wrong and what to

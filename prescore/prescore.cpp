@@ -107,9 +107,11 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     spdlog::info("mesh: {}", describe(report.input));
     refuse_out_of_scale(report.input.diagonal, settings.path);
     refuse_without_area(report.input, settings.path);
-    if (report.input.closed() && report.input.volume < 0) orient_outward(mesh);
+    // Flipping every triangle changes nothing the check counts but the volume's sign.
+    MeshCheck oriented = report.input;
+    if (report.input.closed() && report.input.volume < 0 && orient_outward(mesh)) oriented.volume = -oriented.volume;
     std::string why;
-    bool usable = !is_sheet(report.input, &why) && can_tetrahedralize(check_mesh(mesh, false), &why);
+    bool usable = !is_sheet(report.input, &why) && can_tetrahedralize(oriented, &why);
     if (usable && settings.repair != RepairMode::Never &&
         report.input.self_intersections > max_self_intersections(report.input)) {
         // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many

@@ -81,10 +81,20 @@ TEST(CheckMesh, InsideOutCubeHasVolumeMinusOneAndOrientOutwardFixesIt) {
     EXPECT_NEAR(c.volume, -1.0, 1e-12);
     EXPECT_TRUE(c.oriented());  // consistently oriented, just inward
     EXPECT_FALSE(can_tetrahedralize(c, nullptr));
-    orient_outward(mesh);
+    const MeshCheck inward = c;
+    EXPECT_TRUE(orient_outward(mesh));
     c = check_mesh(mesh);
     EXPECT_NEAR(c.volume, 1.0, 1e-12);
     EXPECT_TRUE(can_tetrahedralize(c, nullptr));
+    // The flip changes nothing else the check counts (prescore reads the flipped mesh's check
+    // from the input's): the volume exactly negated, the rest equal.
+    EXPECT_EQ(c.volume, -inward.volume);
+    EXPECT_EQ(c.area, inward.area);
+    EXPECT_EQ(c.boundary_edges, inward.boundary_edges);
+    EXPECT_EQ(c.misoriented_edges, inward.misoriented_edges);
+    EXPECT_EQ(c.nonmanifold_edges + c.nonmanifold_vertices, inward.nonmanifold_edges + inward.nonmanifold_vertices);
+    EXPECT_EQ(c.degenerate_triangles, inward.degenerate_triangles);
+    EXPECT_FALSE(orient_outward(mesh));  // already outward: left as it is
 }
 
 TEST(CheckMesh, OneFlippedTriangleMisorientsItsThreeEdges) {
