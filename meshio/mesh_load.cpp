@@ -186,6 +186,31 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+// What to do about a file assimp cannot read. Blender's own files are read only as Blender 2.4 to
+// 2.7x saved them (their header: "BLENDER", a pointer size, an endianness, three version digits);
+// a newer one, or one saved compressed by Blender 3 and later (zstd), is exported from Blender.
+std::string format_fix(const std::string& path) {
+    const std::string head = read_file_head(path, 12);
+    const bool blend = lower_extension(path) == ".blend" || head.rfind("BLENDER", 0) == 0;
+    if (!blend)
+        return "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, 3DS, "
+               "FBX, ...)";
+    const std::string export_it =
+        "in Blender, File > Export > glTF 2.0 (.glb) or Wavefront (.obj), and give shatter that file";
+    const auto digit = [&head](size_t i) { return head.size() > i && std::isdigit(static_cast<unsigned char>(head[i])); };
+    std::string newer;
+    if (head.rfind("BLENDER", 0) == 0 && digit(9) && digit(10) && digit(11) && head.substr(9, 3) >= "280")
+        newer = fmt::format("Blender {}.{}", head[9],
+                            head[9] >= '3' ? std::to_string(std::stoi(head.substr(10, 2))) : head.substr(10, 2));
+    else if (head.rfind("\x28\xb5\x2f\xfd", 0) == 0)
+        newer = "Blender 3 or later, compressed";
+    if (!newer.empty())
+        return "the mesh reader (assimp) reads .blend files only as Blender 2.4 to 2.7x saved them, and this one was "
+               "saved by " + newer + ": " + export_it;
+    return "check that the file is complete; or " + export_it +
+           " (the mesh reader, assimp, reads .blend files as Blender 2.4 to 2.7x saved them)";
+}
+
 // The metres per unit a file states, or 0 when its format has no units. glTF is in metres by
 // its specification; assimp applies a Collada file's <unit meter> to the root node, so its
 // coordinates arrive in metres; an FBX file records its unit in centimetres (UnitScaleFactor).
@@ -234,12 +259,9 @@ LoadedMesh import_in_process(const std::string& path) {
                                     aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
                                     aiComponent_ANIMATIONS | aiComponent_TEXTURES | aiComponent_LIGHTS |
                                     aiComponent_CAMERAS | aiComponent_MATERIALS);
-    const std::string format_fix =
-        "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
-        "3DS, FBX, ...)";
     const aiScene* scene = importer.ReadFile(path, 0);
     if (scene == nullptr) {
-        throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), format_fix);
+        throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), format_fix(path));
     }
     // Before validation (which rejects a scene without meshes or faces with a message about
     // assimp's data structures), say plainly when there is nothing to fill.
@@ -259,7 +281,7 @@ LoadedMesh import_in_process(const std::string& path) {
         scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                                              aiProcess_JoinIdenticalVertices);
     if (scene == nullptr) {
-        throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), format_fix);
+        throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), format_fix(path));
     }
 
     Merger merger(path);
@@ -334,16 +356,16 @@ double mesh_import_deadline_seconds(const std::string& path) {
 
 namespace {
 
-LoadedMesh import_isolated(const std::string& path, const std::string& format_fix) {
+LoadedMesh import_isolated(const std::string& path) {
     const double limit = mesh_import_deadline_seconds(path);
     try {
         return deserialize(run_isolated([&] { return serialize(import_in_process(path)); }, limit));
     } catch (const IsolatedFailure& f) {
         if (f.timed_out)
             throw_input_error(path, fmt::format("the mesh reader (assimp) did not finish within {:.3g} s on this file", limit),
-                              "the file is damaged or malformed; " + format_fix);
+                              "the file is damaged or malformed; " + format_fix(path));
         throw_input_error(path, std::string("the mesh reader (assimp) crashed on this file (") + f.what() + ")",
-                          "the file is damaged or malformed; " + format_fix);
+                          "the file is damaged or malformed; " + format_fix(path));
     }
 }
 
@@ -355,10 +377,7 @@ LoadedMesh load_mesh_file(const std::string& path) {
     // The first 64 kB: what a PLY header may take.
     if (const std::string head = read_file_head(path, 64 * 1024); looks_like_ply(head)) check_ply_header(head, path);
 
-    const std::string format_fix =
-        "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, "
-        "3DS, FBX, ...)";
-    return import_isolated(path, format_fix);
+    return import_isolated(path);
 }
 
 std::string rounding_hint(const FloatRounding& r) {
