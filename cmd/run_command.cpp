@@ -64,7 +64,7 @@ RunCommand add_run_command(CLI::App& root) {
         ->allow_extra_args(false);
     c->add_option("--stages", f->stages,
                   option_help("only these stages, comma-separated: prescore, simulate, render, encode, sheet, plot, export, "
-                              "report; the stages before them must be up to date", "", "all"));
+                              "report; what they read must be up to date (the model and the trajectory; the frames for encode and sheet)", "", "all"));
     c->add_option("--chunk", f->chunk,
                   option_help("render only chunk I of N equal frame ranges, I/N counted from 0 (for cluster job "
                               "arrays); later stages wait until every frame is there", "", "0/1"));
