@@ -107,8 +107,11 @@ const char* const kTimesScript = R"JS(
 )JS";
 
 // The 3D view: three.js (classic scripts from viewer/), the .glb from the page's base64, its first
-// animation on a loop. window.shatterViewer is what tests drive: loaded, error, duration, pieces,
-// setTime(t) (pauses), play(), pause().
+// animation on a loop, seen through the movie's camera (the .glb's node "camera", which the
+// animation moves as render's camera moves) until the view is orbited, panned or zoomed; the
+// "Movie camera" button goes back to it. window.shatterViewer is what tests drive: loaded, error,
+// duration, pieces, setTime(t) (pauses), play(), pause(), camera() (the view's position, the
+// direction it looks in, and whether it is the movie's), movieCamera().
 const char* const kViewerScript = R"JS(
 (function () {
   'use strict';
@@ -118,6 +121,7 @@ const char* const kViewerScript = R"JS(
   var slider = document.getElementById('scrub');
   var label = document.getElementById('time');
   var button = document.getElementById('play');
+  var back = document.getElementById('movie-camera');
   function fail(message) { api.error = message; status.textContent = message; status.className = 'note'; }
   if (!window.THREE || !THREE.GLTFLoader || !THREE.OrbitControls) {
     fail('three.js did not load from viewer/: no 3D view.');
@@ -143,14 +147,30 @@ const char* const kViewerScript = R"JS(
   scene.add(sun);
   var camera = new THREE.PerspectiveCamera(35, 16 / 9, 0.01, 1000);
   var controls = new THREE.OrbitControls(camera, renderer.domElement);
-  var mixer = null, playing = false, last = 0;
+  var mixer = null, playing = false, last = 0, root = null;
+  var movie = null, following = false;  // the .glb's camera; whether the view is it
   function render() { renderer.render(scene, camera); }
   function show(t) { slider.value = t; label.textContent = t.toFixed(2) + ' s'; }
+  // The view takes the movie camera's place and vertical field of view (its own aspect).
+  function follow() {
+    root.updateMatrixWorld(true);
+    camera.position.setFromMatrixPosition(movie.matrixWorld);
+    camera.quaternion.setFromRotationMatrix(movie.matrixWorld);
+    if (camera.fov !== movie.fov) {
+      camera.fov = movie.fov;
+      camera.updateProjectionMatrix();
+    }
+  }
+  function setFollowing(on) {
+    following = on && !!movie;
+    back.disabled = following || !movie;
+  }
   function setTime(t) {
     t = Math.max(0, Math.min(api.duration, t));
     // The clip loops: its own duration would wrap to the first frame, so the end is shown from
     // just before it (the last key's pose).
     mixer.setTime(Math.min(t, api.duration * (1 - 1e-7)));
+    if (following) follow();
     show(t);
     render();
   }
@@ -178,6 +198,8 @@ const char* const kViewerScript = R"JS(
   }
   new THREE.GLTFLoader().parse(bytes.buffer, '', function (gltf) {
     scene.add(gltf.scene);
+    root = gltf.scene;
+    gltf.scene.traverse(function (o) { if (o.isCamera && !movie) movie = o; });
     mixer = new THREE.AnimationMixer(gltf.scene);
     if (gltf.animations.length > 0) {
       mixer.clipAction(gltf.animations[0]).play();
@@ -200,17 +222,31 @@ const char* const kViewerScript = R"JS(
     camera.far = radius * 100;
     camera.fov = parseFloat(box.dataset.fov) || 35;
     camera.updateProjectionMatrix();
-    if (box.dataset.eye && box.dataset.target) {
-      // the shot's camera, as the movie shows it
-      camera.position.fromArray(JSON.parse(box.dataset.eye));
-      controls.target.fromArray(JSON.parse(box.dataset.target));
+    if (movie) {
+      setFollowing(true);
+      follow();
     } else {
       // far enough that the sphere around everything the animation reaches fits the view's height
       var distance = 1.15 * radius / Math.sin(camera.fov * Math.PI / 360);
       camera.position.copy(new THREE.Vector3(1.4, 0.9, 2.2).normalize().multiplyScalar(distance).add(center));
       controls.target.copy(center);
+      controls.update();
     }
-    controls.update();
+    // Moving the view leaves the movie's camera: the orbit turns about the point ahead of the view
+    // nearest the pieces' centre as they are now.
+    controls.addEventListener('start', function () {
+      if (!following) return;
+      setFollowing(false);
+      var ahead = camera.getWorldDirection(new THREE.Vector3());
+      var now = new THREE.Box3().setFromObject(root).getCenter(new THREE.Vector3());
+      var d = Math.max(now.sub(camera.position).dot(ahead), radius / 100);
+      controls.target.copy(camera.position).addScaledVector(ahead, d);
+    });
+    back.addEventListener('click', function () {
+      setFollowing(true);
+      follow();
+      render();
+    });
     var names = new Set();
     gltf.scene.traverse(function (o) { if (/^piece_\d+$/.test(o.name)) names.add(o.name); });
     api.pieces = names.size;
@@ -224,6 +260,11 @@ const char* const kViewerScript = R"JS(
     button.disabled = false;
     slider.disabled = false;
     api.setTime = function (t) { pause(); setTime(t); };
+    api.camera = function () {
+      return { position: camera.position.toArray(), direction: camera.getWorldDirection(new THREE.Vector3()).toArray(),
+               fov: camera.fov, following: following };
+    };
+    api.movieCamera = function () { back.click(); };
     api.play = play;
     api.pause = pause;
     api.loaded = true;
@@ -269,17 +310,16 @@ std::string viewer_section(const ReportPageInput& in) {
                "meanwhile <a href=\"" + url_path(files.value("glb", in.name + ".glb")) + "\">" +
                html_escape(in.name) + ".glb</a> opens in Blender or any glTF viewer.</p>\n";
     }
-    // The shot's camera, when it sets one, so that the view starts as the movie looks.
+    // The shot's field of view, for a .glb without the movie's camera.
     const json render = in.settings.value("render", json::object());
-    std::string camera = " data-fov=\"" + html_escape(render.value("fov", json(35.0)).dump()) + "\"";
-    if (render.contains("camera_position") && render.contains("camera_target"))
-        camera += " data-eye=\"" + html_escape(render["camera_position"].dump()) + "\" data-target=\"" +
-                  html_escape(render["camera_target"].dump()) + "\"";
+    const std::string camera = " data-fov=\"" + html_escape(render.value("fov", json(35.0)).dump()) + "\"";
     out += "<div class=\"viewer\" id=\"viewer\"" + camera + "><p id=\"viewer-status\" class=\"muted\">Loading " +
            html_escape(in.name) + ".glb&hellip;</p></div>\n";
     out += "<div class=\"controls\"><button id=\"play\" disabled>Play</button><input type=\"range\" id=\"scrub\" min=\"0\" "
-           "max=\"1\" step=\"any\" value=\"0\" disabled><span id=\"time\">0.00 s</span></div>\n";
-    out += "<p class=\"muted\">Drag to orbit, right-drag to pan, wheel to zoom; the slider scrubs the animation. "
+           "max=\"1\" step=\"any\" value=\"0\" disabled><span id=\"time\">0.00 s</span>"
+           "<button id=\"movie-camera\" disabled>Movie camera</button></div>\n";
+    out += "<p class=\"muted\">Seen as the movie sees it; drag to orbit, right-drag to pan, wheel to zoom (Movie "
+           "camera goes back); the slider scrubs the animation. "
            "The same animation: <a href=\"" + url_path(files.value("glb", in.name + ".glb")) + "\">" + html_escape(in.name) +
            ".glb</a>.</p>\n";
     // The .glb, embedded: a file:// page may not fetch() its neighbours.

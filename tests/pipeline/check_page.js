@@ -10,7 +10,9 @@
 //    "failed_requests": [...], "values": {data-key: data-value, ...} (outside rows with data-run),
 //    "runs": {RUN: {data-key: data-value, ...}} (in them), "broken_images": [src of every image that did not load],
 //    "title": ..., "viewer": {"loaded", "error", "pieces",
-//    "duration"} (with --viewer)}
+//    "duration", "cameras": {"start", "end", "dragged", "back"}} (with --viewer: the view's
+//    camera (position, direction, fov, following) at the start and the end of the animation, after
+//    a drag across the view at the end, and after the Movie camera button)}
 // Exits 0 when the page was opened (whatever it showed), 2 when Chromium could not be driven.
 'use strict';
 
@@ -82,8 +84,21 @@ async function main() {
           await tab.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
           await box.screenshot({ path: path.join(outDir, file) });
         };
+        const camera = () => tab.evaluate(() => window.shatterViewer.camera());
+        result.viewer.cameras = {};
         await shoot(0, 'viewer_start.png');
+        result.viewer.cameras.start = await camera();
         await shoot(result.viewer.duration, 'viewer_end.png');
+        result.viewer.cameras.end = await camera();
+        // A person's drag across the middle of the view, then the button back.
+        const b = await box.boundingBox();
+        await tab.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+        await tab.mouse.down();
+        await tab.mouse.move(b.x + b.width / 2 + 120, b.y + b.height / 2 + 30, { steps: 8 });
+        await tab.mouse.up();
+        result.viewer.cameras.dragged = await camera();
+        await tab.click('#movie-camera');
+        result.viewer.cameras.back = await camera();
       }
     }
     await tab.evaluate(() => window.scrollTo(0, 0));

@@ -3,7 +3,8 @@
 // not a file beside the page (nor data:/blob:), every image loads, a screenshot that is not
 // blank, and every number shown equal to the JSON the page reports on. The run's page also plays
 // its .glb: the 3D view loads every piece, the animation lasts (frames - 1) / fps, and views at
-// the start and the end of it differ.
+// the start and the end of it differ; the view is the movie's camera (the .glb's, which is
+// render's) at the start and at the end, a drag leaves it, and the Movie camera button returns.
 //
 // Needs node, the npm package puppeteer-core (scripts/install-node-tools.sh puts it into
 // BUILD/node_modules; `make test` calls it) and Debian's chromium (scripts/install-deps.sh); a
@@ -18,6 +19,9 @@
 #include <optional>
 #include <set>
 
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "core/html.h"
@@ -133,6 +137,44 @@ private:
     std::optional<std::string> old_;
 };
 
+// The 3D view's camera against the .glb's "camera" node at its first and last key: the same place,
+// direction and vertical field of view (three.js keeps the degrees, glTF the radians).
+void expect_movie_camera(const std::string& glb, const json& seen) {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(glb, 0);
+    ASSERT_TRUE(scene && scene->mNumCameras == 1 && scene->mNumAnimations == 1) << glb;
+    const aiCamera& lens = *scene->mCameras[0];
+    const aiAnimation& anim = *scene->mAnimations[0];
+    const aiNodeAnim* keys = nullptr;
+    for (unsigned i = 0; i < anim.mNumChannels; ++i)
+        if (std::string(anim.mChannels[i]->mNodeName.C_Str()) == "camera") keys = anim.mChannels[i];
+    ASSERT_TRUE(keys && keys->mNumPositionKeys > 1) << "the cube's camera follows its pieces";
+    const auto expect_at = [&](const json& view, unsigned key, const char* when) {
+        ASSERT_TRUE(view.is_object()) << when;
+        EXPECT_TRUE(view["following"].get<bool>()) << when;
+        const aiVector3D& p = keys->mPositionKeys[key].mValue;
+        const aiQuaternion& q = keys->mRotationKeys[key].mValue;
+        const Eigen::Vector3d look = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized() * Eigen::Vector3d(0, 0, -1);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(view["position"][i].get<double>(), p[i], 1e-4) << when << " " << view.dump();
+            EXPECT_NEAR(view["direction"][i].get<double>(), look[i], 1e-4) << when << " " << view.dump();
+        }
+        // assimp 5.2 reads glTF's yfov times the aspect into mHorizontalFOV.
+        EXPECT_NEAR(view["fov"].get<double>(), lens.mHorizontalFOV / lens.mAspect * 180 / M_PI, 1e-3) << when;
+    };
+    const unsigned last = keys->mNumPositionKeys - 1;
+    expect_at(seen["start"], 0, "at the start");
+    expect_at(seen["end"], last, "at the end");
+    expect_at(seen["back"], last, "after the Movie camera button");
+    // A drag turns the view about a point ahead of it: it is not the movie's any more.
+    const json& dragged = seen["dragged"];
+    EXPECT_FALSE(dragged["following"].get<bool>()) << dragged.dump();
+    double turned = 0;
+    for (int i = 0; i < 3; ++i)
+        turned = std::max(turned, std::abs(dragged["direction"][i].get<double>() - seen["end"]["direction"][i].get<double>()));
+    EXPECT_GT(turned, 0.05) << "a drag across the view did not turn it: " << dragged.dump();
+}
+
 TEST(ReportPage, RunPageLoadsOfflineShowsTheSummaryAndPlaysTheGlb) {
     SKIP_WITHOUT_BROWSER();
     if (!fs::exists(fs::path(*node_modules()) / "three" / "package.json"))
@@ -171,6 +213,7 @@ TEST(ReportPage, RunPageLoadsOfflineShowsTheSummaryAndPlaysTheGlb) {
     EXPECT_GT(moved.pixels_over, 200u) << "the 3D view at the start and the end of the animation look alike";
     std::cout << "viewer: " << seen["viewer"].dump() << ", " << moved.pixels_over << " pixels differ between t = 0 and t = "
               << seen["viewer"]["duration"] << " s\n";
+    expect_movie_camera(out + "/cube.glb", seen["viewer"]["cameras"]);
 
     // The same inputs, the same page; a re-run keeps it (the report stage is up to date).
     const std::string out2 = dir.file("out2");
