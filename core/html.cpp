@@ -77,7 +77,7 @@ pre { background: var(--panel); padding: 8px 10px; overflow-x: auto; }
 table { border-collapse: collapse; margin: 0.4em 0 1em; }
 th, td { padding: 3px 10px 3px 0; text-align: left; vertical-align: top; border-bottom: 1px solid var(--line); }
 th { font-weight: 600; }
-td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; padding-left: 10px; }
+td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; padding-left: 10px; white-space: nowrap; }
 .grid { display: grid; grid-template-columns: repeat(auto-fit, minmax(300px, 1fr)); gap: 16px; }
 figure { margin: 0; }
 figcaption { color: var(--muted); font-size: 0.9em; margin-top: 2px; }
