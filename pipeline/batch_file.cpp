@@ -61,7 +61,7 @@ const toml::table* table_key(TomlSection& s, const char* key) {
     return n->as_table();
 }
 
-BatchJob read_job(TomlSection& s, const BatchFile& batch) {
+BatchJob read_job(TomlSection& s, const BatchFile& batch, const std::vector<std::string>& overrides) {
     BatchJob job;
     if (!s.text("shot", job.shot) || job.shot.empty())
         s.fail(nullptr, fmt::format("{} is missing", s.key_name("shot")), "add shot = \"SHOT.toml\" (relative to the batch file)");
@@ -80,6 +80,7 @@ BatchJob read_job(TomlSection& s, const BatchFile& batch) {
         flatten(*set, "", values);
         for (const auto& [key, node] : values) common.push_back(key + "=" + toml_text(*node));
     }
+    common.insert(common.end(), overrides.begin(), overrides.end());
     // The sweep: the cartesian product, the first key varying slowest.
     struct Axis {
         std::string key, short_name;
@@ -125,7 +126,7 @@ BatchJob read_job(TomlSection& s, const BatchFile& batch) {
 
 }  // namespace
 
-BatchFile load_batch(const std::string& path, const std::string& output_dir) {
+BatchFile load_batch(const std::string& path, const std::string& output_dir, const std::vector<std::string>& overrides) {
     toml::table root = parse_toml_file(path);
     BatchFile batch;
     batch.path = path;
@@ -147,7 +148,7 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir) {
     size_t index = 0;
     for (const toml::node& j : *jobs->as_array()) {
         TomlSection s(*j.as_table(), path, fmt::format("job[{}]", index++));
-        BatchJob job = read_job(s, batch);
+        BatchJob job = read_job(s, batch, overrides);
         if (!names.insert(job.name).second)
             s.fail(nullptr, fmt::format("two jobs are named \"{}\"", job.name), "give each job its own name = \"...\"");
         batch.jobs.push_back(std::move(job));
@@ -156,10 +157,46 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir) {
     return batch;
 }
 
+BatchFile batch_of_files(const std::vector<std::string>& files, const std::string& output_dir,
+                         const std::vector<std::string>& overrides) {
+    BatchFile batch;
+    batch.output_dir = output_dir.empty() ? (fs::path("out") / "batch").string() : output_dir;
+    std::set<std::string> names;
+    for (const std::string& file : files) {
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec))
+            throw_input_error(file, fs::exists(file, ec) ? "not a regular file" : "no such file",
+                              "give shot files (.toml) or mesh files that exist");
+        BatchJob job;
+        job.shot = file;
+        const fs::path path(file);
+        std::string name = path.stem().string();
+        if (name.empty() || name[0] == '.') name = "mesh" + name;
+        if (names.count(name)) {
+            std::string ext = path.extension().string();
+            if (!ext.empty()) name += "-" + ext.substr(1);
+        }
+        const std::string base = name;
+        for (int n = 2; names.count(name); ++n) name = base + "-" + std::to_string(n);
+        names.insert(name);
+        job.name = name;
+        job.output_dir = (fs::path(batch.output_dir) / job.name).string();
+        BatchRun run;
+        run.label = "run";
+        run.caption = job.name;
+        run.overrides = overrides;
+        run.output_dir = (fs::path(job.output_dir) / run.label).string();
+        job.runs.push_back(std::move(run));
+        batch.jobs.push_back(std::move(job));
+    }
+    return batch;
+}
+
 bool is_batch_file(const std::string& path) {
+    if (fs::path(path).extension() != ".toml") return false;  // not read as TOML: a mesh may be large
     try {
         const toml::table root = parse_toml_file(path);
-        return root.contains("job");
+        return root.contains("job") || root.contains("batch");
     } catch (const Error&) {
         return false;
     }

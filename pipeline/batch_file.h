@@ -50,10 +50,21 @@ struct BatchFile {
 
 // Reads and checks a batch file: syntax, unknown keys, types, empty sweeps and duplicate job
 // names are Error(BadInput) naming file:line. The shots themselves are read when their runs start
-// (a bad shot fails its job only). `output_dir` replaces [batch] output when not empty.
-BatchFile load_batch(const std::string& path, const std::string& output_dir = "");
+// (a bad shot fails its job only). `output_dir` replaces [batch] output when not empty;
+// `overrides` (SECTION.KEY=VALUE) go to every run after its job's `set` and before its sweep's
+// values.
+BatchFile load_batch(const std::string& path, const std::string& output_dir = "",
+                     const std::vector<std::string>& overrides = {});
 
-// True for a batch file (.batch.toml or a TOML file with [[job]] tables) rather than a shot.
+// A batch of shots and mesh files given by name (`shatter batch a.obj b.stl c.toml`): one job
+// and one run each, named by the file (a second file of the same name gets its extension, then a
+// number: "horse", "horse-stl", "horse-stl-2"), every run with `overrides`, into `output_dir`
+// (default out/batch). A file that is not there is Error(BadInput) before anything runs.
+BatchFile batch_of_files(const std::vector<std::string>& files, const std::string& output_dir = "",
+                         const std::vector<std::string>& overrides = {});
+
+// True for a batch file (a .toml file with [[job]] tables or a [batch] table) rather than a shot
+// or a mesh.
 bool is_batch_file(const std::string& path);
 
 }  // namespace shatter

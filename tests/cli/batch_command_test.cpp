@@ -76,6 +76,48 @@ TEST(BatchCommand, SweepSharesOnePrescoreIsolatesABadJobAndMakesTheStripPlotAndT
     EXPECT_EQ(count(slurp(out + "/cube/alpha-2/run.log"), "simulate: up to date"), 1u);
 }
 
+// Mesh files given by name, the way a folder of meshes is fractured (`shatter batch meshes/*.obj`):
+// each runs the default shot into a job named by its file (the second file of the same name gets
+// its extension), with the --set overrides in every run; index.html has a row per run. A bad
+// --set is refused before anything is written; so is a file that is not there.
+TEST(BatchCommand, MeshesGivenByNameEachRunTheDefaultShotWithTheSets) {
+    TempDir dir;
+    fs::create_directories(dir.file("a"));
+    fs::create_directories(dir.file("b"));
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("a/cube.obj"));
+    fs::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("b/cube.obj"));
+    const std::string out = dir.file("out");
+    const std::vector<std::string> sets = {"--set", "render.width=160", "--set", "render.height=90",
+                                           "--set", "render.shadow_map=512", "--set", "simulate.duration=0.5",
+                                           "--set", "prescore.pieces=4"};
+    std::vector<std::string> args = {"batch", dir.file("a/cube.obj"), dir.file("b/cube.obj"), "-o", out};
+    args.insert(args.end(), sets.begin(), sets.end());
+    auto r = run_shatter(args);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("all 2 runs succeeded"), std::string::npos) << r.out;
+    for (const char* job : {"cube", "cube-obj"}) {
+        const fs::path run = fs::path(out) / job / "run";
+        EXPECT_TRUE(fs::exists(run / "cube.mp4")) << job;
+        const auto frame = read_png_size((run / "frames" / "frame_00000.png").string());
+        ASSERT_TRUE(frame.has_value()) << job;
+        EXPECT_EQ(*frame, std::make_pair(160u, 90u)) << job;
+        EXPECT_NE(slurp((run / "summary.json").string()).find("\"pieces\": 4"), std::string::npos) << job;
+    }
+    // The same mesh, the same default shot, the same model.
+    EXPECT_EQ(slurp(out + "/cube/run/cube.model"), slurp(out + "/cube-obj/run/cube.model"));
+    const std::string index = slurp(out + "/index.html");
+    EXPECT_NE(index.find("cube-obj"), std::string::npos);
+
+    const std::string fresh = dir.file("out2");
+    r = run_shatter({"batch", dir.file("a/cube.obj"), "-o", fresh, "--set", "render.width=abc"});
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("--set render.width=abc"), std::string::npos) << r.err;
+    r = run_shatter({"batch", dir.file("a/cube.obj"), dir.file("a/nope.obj"), "-o", fresh});
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("nope.obj: no such file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(fresh));
+}
+
 TEST(BatchCommand, AMalformedBatchFileIsRefusedWithItsLine) {
     TempDir dir;
     const std::string batch = dir.write("b.toml", "[[job]]\nshot = \"x.toml\"\nsweep = { \"material.alpha\" = [] }\n");
