@@ -91,7 +91,7 @@ video { width: 100%; }
 .controls { display: flex; align-items: center; gap: 10px; margin: 6px 0; }
 .controls input[type=range] { flex: 1; }
 button { font: inherit; padding: 2px 12px; }
-img.thumb { width: 160px; }
+img.thumb { width: 160px; max-width: none; }
 .grid img { width: 100%; }
 .compare { position: relative; width: 100%; }
 .compare img { width: 100%; image-rendering: pixelated; }

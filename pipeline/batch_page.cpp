@@ -34,10 +34,13 @@ std::string batch_page_html(const BatchFile& batch, const BatchResult& result) {
     const fs::path root(batch.output_dir);
     size_t failed = 0;
     for (const BatchRunResult& r : result.runs) failed += r.exit_code != 0;
+    // A batch file, or shots and meshes given by name (no file: the output folder names the page).
+    const bool named = batch.path.empty();
     std::string out = page_begin(
-        fs::path(batch.path).stem().string(),
-        fmt::format("<code>shatter batch {}</code>: {} jobs, {} runs, {}", html_escape(batch.path), batch.jobs.size(),
-                    result.runs.size(),
+        named ? fs::path(batch.output_dir).filename().string() : fs::path(batch.path).stem().string(),
+        fmt::format("<code>shatter batch {}</code>: {} jobs, {} runs, {}",
+                    named ? fmt::format("FILE... ({} files)", batch.jobs.size()) : html_escape(batch.path),
+                    batch.jobs.size(), result.runs.size(),
                     failed ? fmt::format("<span class=\"bad\">{} failed</span>", failed) : std::string("all succeeded")));
     size_t k = 0;
     for (const BatchJob& job : batch.jobs) {

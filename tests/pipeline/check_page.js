@@ -8,7 +8,7 @@
 // JSON object:
 //   {"console_errors": [...], "page_errors": [...], "requests": [every URL the page asked for],
 //    "failed_requests": [...], "values": {data-key: data-value, ...} (outside rows with data-run),
-//    "runs": {RUN: {data-key: data-value, ...}} (in them), "broken_images": [src of every image that did not load],
+//    "runs": {RUN: {data-key: data-value, ...}} (in them), "broken_images": [src of every image that did not load or shows at no size],
 //    "title": ..., "viewer": {"loaded", "error", "pieces",
 //    "duration", "cameras": {"start", "end", "dragged", "back"}} (with --viewer: the view's
 //    camera (position, direction, fov, following) at the start and the end of the animation, after
@@ -58,7 +58,12 @@ async function main() {
         into[e.getAttribute('data-key')] = e.getAttribute('data-value');
       });
       const broken = [];
-      document.querySelectorAll('img').forEach((i) => { if (!i.complete || i.naturalWidth === 0) broken.push(i.getAttribute('src')); });
+      // An image that did not load, or that the page's layout shows at no size (a thumbnail whose
+      // max-width is a percentage of an auto-sized table cell comes out 0 pixels wide).
+      document.querySelectorAll('img').forEach((i) => {
+        const box = i.getBoundingClientRect();
+        if (!i.complete || i.naturalWidth === 0 || box.width < 1 || box.height < 1) broken.push(i.getAttribute('src'));
+      });
       return { values, runs, broken };
     });
     result.values = read.values;
