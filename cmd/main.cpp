@@ -1,7 +1,9 @@
 // The `shatter` command: global options, subcommand dispatch, and the mapping of errors to exit
 // codes (README: "Exit codes").
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <string>
 
 #include <spdlog/spdlog.h>
 
@@ -52,6 +54,24 @@ int main(int argc, char** argv) {
     add(add_submit_command);
     add(add_settings_doc_command);
 
+    // `shatter MESH`: the first word that is not an option names no command; say which one runs it.
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word == "--log-level") {
+            ++i;
+            continue;
+        }
+        if (word.empty() || word[0] == '-') continue;
+        bool command = false;
+        for (const CLI::App* sub : app.get_subcommands({})) command = command || sub->check_name(word);
+        if (command) break;
+        std::error_code ec;
+        std::fprintf(stderr, "error: '%s' is not a command (fix: %s; 'shatter --help' lists the commands)\n", word.c_str(),
+                     std::filesystem::is_regular_file(word, ec)
+                         ? ("shatter run " + word + " runs the default shot on it, shatter batch FILE... several").c_str()
+                         : "shatter run MESH or SHOT, batch, submit, prescore, simulate, render, diff, info");
+        return static_cast<int>(ExitCode::Usage);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
