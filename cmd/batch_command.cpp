@@ -84,7 +84,8 @@ RunCommand add_batch_command(CLI::App& root) {
                   option_help("the output folder", "", "[batch] output, else out/BATCH-NAME; for files given by name, out/batch"));
     c->add_option("--set", f->overrides,
                   "override a shot setting in every run, SECTION.KEY=VALUE (repeatable; after a job's set, before its "
-                  "sweep), e.g. --set render.width=640");
+                  "sweep), e.g. --set render.width=640")
+        ->allow_extra_args(false);
     c->add_option("--workers", f->workers, option_help("runs at a time", "", "[batch] workers, else 2"))
         ->check(CLI::Range(1, 256));
     c->add_flag("-q,--quiet", f->quiet, "no line per finished run");

@@ -1,4 +1,4 @@
-// shatter submit SHOT|JOBS --slurm [-o DIR] [--set K=V]... [--chunks N] [--partition P] [--account A]
+// shatter submit SHOT|MESH|JOBS|FILE... --slurm [-o DIR] [--set K=V]... [--chunks N] [--partition P] [--account A]
 //                [--time T] [--mem M] [--cpus N] [--sbatch-arg ARG]... [--shatter-bin PATH] [--wait]
 #include <cstdio>
 #include <filesystem>
@@ -15,7 +15,8 @@ namespace shatter {
 namespace {
 
 struct SubmitFlags {
-    std::string input, output, cache;
+    std::vector<std::string> inputs;
+    std::string output, cache;
     std::vector<std::string> overrides;
     bool slurm = false, wait = false;
     SubmitOptions options;
@@ -27,20 +28,25 @@ int run(SubmitFlags& f) {
                                      "shatter submits to, docs/cluster.md)");
     std::vector<RunSubmission> runs;
     SlurmJob sweep;
-    if (is_batch_file(f.input)) {
-        if (!f.overrides.empty())
-            throw Error(ExitCode::Usage, fmt::format("--set: {} is a batch file, whose jobs carry their own settings (fix: "
-                                                     "put them in the batch file's set = {{ ... }})", f.input));
+    // One shot or mesh; one batch file; or several shots and meshes, a batch of them.
+    const bool batch_file = f.inputs.size() == 1 && is_batch_file(f.inputs.front());
+    if (batch_file || f.inputs.size() > 1) {
+        for (const std::string& input : f.inputs)
+            if (f.inputs.size() > 1 && is_batch_file(input))
+                throw Error(ExitCode::Usage, fmt::format("{} is a batch file, given with other files (fix: give one "
+                                                         "batch file, or shots and meshes)", input));
         if (!f.cache.empty())
             throw Error(ExitCode::Usage, "--cache: a batch shares OUTPUT/.cache already (fix: leave --cache out)");
-        runs = submit_batch(load_batch(f.input, f.output), f.options, &sweep);
+        runs = submit_batch(batch_file ? load_batch(f.inputs.front(), f.output, f.overrides)
+                                       : batch_of_files(f.inputs, f.output, f.overrides),
+                            f.options, &sweep);
     } else {
         RunOptions run;
-        run.shot = f.input;
+        run.shot = f.inputs.front();
         run.overrides = f.overrides;
         run.output_dir = f.output;
         run.cache_dir = f.cache;
-        runs.push_back(submit_run(std::filesystem::path(f.input).stem().string(), run, f.options));
+        runs.push_back(submit_run(std::filesystem::path(run.shot).stem().string(), run, f.options));
     }
     std::vector<SlurmJob> jobs;
     for (const RunSubmission& r : runs) {
@@ -72,16 +78,22 @@ int run(SubmitFlags& f) {
 RunCommand add_submit_command(CLI::App& root) {
     auto f = std::make_shared<SubmitFlags>();
     CLI::App* c = root.add_subcommand(
-        "submit", "Run a shot or a batch file on a Slurm cluster (docs/cluster.md): prescore and simulate as one job, "
+        "submit", "Run a shot, a mesh, a batch file, or several shots and meshes (as shatter batch) on a Slurm cluster "
+                  "(docs/cluster.md): prescore and simulate as one job, "
                   "render as a job array over frame chunks after it, encode and summary as a final job. Frames are "
                   "the bytes of a local run. Stages that are up to date, and jobs still queued from an earlier "
                   "submit, are not submitted again. With --wait: exit code 1 naming each failed task.");
-    c->add_option("input", f->input, "the shot file (.toml), or a batch file (.toml with [[job]] tables)")->required();
+    c->add_option("input", f->inputs,
+                  "the shot file (.toml) or mesh file, a batch file (.toml with [[job]] tables), or several shots and "
+                  "meshes")
+        ->required();
     c->add_flag("--slurm", f->slurm, "submit to Slurm with sbatch (required: the only executor so far)");
     c->add_option("-o,--output", f->output,
                   option_help("the output folder, visible at the same path on every node", "",
-                              "out/SHOT-NAME, or the batch file's"));
-    c->add_option("--set", f->overrides, "override a shot setting, SECTION.KEY=VALUE (repeatable; as shatter run)")
+                              "out/SHOT-NAME, or the batch file's; for several files, out/batch"));
+    c->add_option("--set", f->overrides,
+                  "override a shot setting, SECTION.KEY=VALUE (repeatable; as shatter run; in every run of a batch, "
+                  "as shatter batch)")
         ->allow_extra_args(false);
     c->add_option("--cache", f->cache, option_help("a stage cache shared between runs (as shatter run)", "", "none"));
     c->add_option("--chunks", f->options.chunks, option_help("render array tasks", "", "one per 30 frames"))

@@ -130,6 +130,7 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir, con
     toml::table root = parse_toml_file(path);
     BatchFile batch;
     batch.path = path;
+    batch.overrides = overrides;
     TomlSection top(root, path, "");
     batch.output_dir = (fs::path("out") / fs::path(path).stem()).string();
     if (const toml::node* n = top.node("batch")) {
@@ -160,6 +161,8 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir, con
 BatchFile batch_of_files(const std::vector<std::string>& files, const std::string& output_dir,
                          const std::vector<std::string>& overrides) {
     BatchFile batch;
+    batch.files = files;
+    batch.overrides = overrides;
     batch.output_dir = output_dir.empty() ? (fs::path("out") / "batch").string() : output_dir;
     std::set<std::string> names;
     for (const std::string& file : files) {

@@ -41,7 +41,9 @@ struct BatchJob {
 };
 
 struct BatchFile {
-    std::string path;
+    std::string path;                     // the batch file; "" for files given by name (batch_of_files)
+    std::vector<std::string> files;       // those files, as given
+    std::vector<std::string> overrides;   // --set: in every run (load_batch, batch_of_files)
     std::string output_dir;
     uint32_t workers = 2;
     std::vector<BatchJob> jobs;

@@ -255,17 +255,24 @@ std::vector<RunSubmission> submit_batch(const BatchFile& batch, const SubmitOpti
     make_directories(slurm_dir);
     write_file_atomic((fs::path(slurm_dir) / "job.sh").string(), kJobScript);
     JobRequest req;
-    req.name = job_name("sweep", fs::path(batch.path).stem().string());
+    // The batch file, or the files given by name, with the same --set overrides.
+    const std::string label = batch.path.empty() ? fs::path(dir).filename().string() : fs::path(batch.path).stem().string();
+    req.name = job_name("sweep", label);
     req.script = (fs::path(slurm_dir) / "job.sh").string();
-    req.args = {options.shatter.empty() ? own_executable() : absolute(options.shatter), "batch", absolute(batch.path),
-                "-o", dir, "--quiet", "--workers", std::to_string(std::max<uint32_t>(1, options.slurm.cpus))};
+    req.args = {options.shatter.empty() ? own_executable() : absolute(options.shatter), "batch"};
+    if (batch.path.empty())
+        for (const std::string& f : batch.files) req.args.push_back(absolute(f));
+    else
+        req.args.push_back(absolute(batch.path));
+    for (const std::string& o : batch.overrides) req.args.insert(req.args.end(), {"--set", o});
+    req.args.insert(req.args.end(), {"-o", dir, "--quiet", "--workers", std::to_string(std::max<uint32_t>(1, options.slurm.cpus))});
     req.workdir = dir;
     req.log = slurm_output_path(slurm_dir, "-o/--output") + "/sweep-%j.log";
     req.after_ok = finish_ids;
     sweep->kind = "sweep";
     sweep->id = submit_job(options.slurm, req);
     sweep->log_dir = slurm_dir;
-    sweep->label = fs::path(batch.path).stem().string();
+    sweep->label = label;
     write_file_atomic((fs::path(slurm_dir) / "sweep.json").string(),
                       json{{"format", "shatter-slurm-jobs"}, {"version", kJobsFormatVersion},
                            {"jobs", json::array({{{"kind", "sweep"}, {"id", sweep->id}}})}}.dump(2) + "\n");

@@ -264,6 +264,30 @@ TEST(Submit, BatchFileRunsEverySweepRunThenTheSweepJob) {
         EXPECT_TRUE(fs::exists(out / "beam" / file)) << file;
 }
 
+// Several shots given by name, as `shatter batch` takes them: a job of one run each (the second
+// file of the same name gets its extension), --set in every run and in the final batch job, which
+// makes the index page.
+TEST(Submit, FilesGivenByNameRunAsABatchWithTheirSets) {
+    REQUIRE_CLUSTER();
+    TempDir tmp;
+    tmp.write("beam.toml", kShot);
+    fs::create_directories(tmp.path() / "other");
+    tmp.write("other/beam.toml", kShot);
+    const auto r = run_shatter({"submit", "beam.toml", "other/beam.toml", "--set", "material.alpha=0.5", "--slurm",
+                                "--chunks", "1", "-o", "many", "--wait"},
+                               tmp.path().string());
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("all 7 jobs succeeded"), std::string::npos) << r.out;  // 2 x 3 + the batch job
+    const fs::path out = tmp.path() / "many";
+    for (const char* job : {"beam", "beam-toml"}) {
+        const fs::path run = out / job / "run";
+        ASSERT_TRUE(fs::exists(run / "summary.json")) << job;
+        EXPECT_EQ(nlohmann::json::parse(slurp((run / "summary.json").string()))["alpha"], 0.5) << job;
+        EXPECT_TRUE(fs::exists(run / "frames" / frame_name(kFrames - 1))) << job;
+    }
+    EXPECT_TRUE(fs::exists(out / "index.html"));
+}
+
 // squeue's records as `submit --wait` reads them (the format of query_jobs; no cluster needed).
 TEST(Squeue, RecordsGiveTasksPendingRangesAndExitCodes) {
     const auto jobs = parse_squeue("12|12|N/A|CANCELLED|0|DependencyNeverSatisfied|\n"
