@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/isolated.h"
+#include "meshio/gltf_extensions.h"
 #include "meshio/ply_header.h"
 
 namespace shatter {
@@ -376,6 +377,7 @@ LoadedMesh load_mesh_file(const std::string& path) {
     // assimp crashes on some malformed PLY headers (meshio/ply_header.h): check them first.
     // The first 64 kB: what a PLY header may take.
     if (const std::string head = read_file_head(path, 64 * 1024); looks_like_ply(head)) check_ply_header(head, path);
+    check_gltf_extensions(path);  // positions assimp would misread (meshio/gltf_extensions.h)
 
     return import_isolated(path);
 }
