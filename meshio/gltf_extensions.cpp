@@ -1,10 +1,17 @@
 #include "meshio/gltf_extensions.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <vector>
 
+#include <fmt/format.h>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -13,62 +20,432 @@ namespace shatter {
 
 namespace {
 
-constexpr uint64_t kMaxJsonBytes = 256ull << 20;  // a .gltf with its buffers inlined; larger is not checked
+using json = nlohmann::json;
+namespace fs = std::filesystem;
 
-// The JSON of a glTF file: a .glb's first chunk, a .gltf's whole text; "" when there is none.
-std::string gltf_json(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return "";
-    char header[20] = {};
-    in.read(header, sizeof header);
-    if (in.gcount() == sizeof header && std::memcmp(header, "glTF", 4) == 0) {
-        uint32_t length = 0;
-        std::memcpy(&length, header + 12, 4);  // little-endian, as the format is
-        if (std::memcmp(header + 16, "JSON", 4) != 0 || length > kMaxJsonBytes) return "";
-        std::string json(length, '\0');
-        in.read(json.data(), std::streamsize(length));
-        json.resize(size_t(in.gcount()));
-        return json;
-    }
-    std::error_code ec;
-    const auto bytes = std::filesystem::file_size(path, ec);
-    std::string ext = std::filesystem::path(path).extension().string();
+constexpr uint64_t kMaxFileBytes = 2ull << 30;  // what a GLB's 32-bit length allows
+constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
+constexpr int kFloat = 5126;
+const char* const kFix = "or write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
+                         "gltfpack), then give shatter plain.glb";
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ec || bytes > kMaxJsonBytes || ext != ".gltf") return "";
-    std::string json(bytes, '\0');
-    in.clear();
-    in.seekg(0);
-    in.read(json.data(), std::streamsize(bytes));
-    json.resize(size_t(in.gcount()));
-    return json;
+    return ext;
 }
 
-}  // namespace
+std::string read_bytes(const std::string& path, uint64_t limit) {
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    if (ec || size > limit) return "";
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(size, '\0');
+    in.read(bytes.data(), std::streamsize(size));
+    bytes.resize(size_t(in.gcount()));
+    return bytes;
+}
 
-std::string unreadable_gltf_extension(const std::string& path) {
-    const std::string text = gltf_json(path);
-    if (text.empty()) return "";
-    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("extensionsRequired") || !j["extensionsRequired"].is_array())
-        return "";
+uint32_t le32(const std::string& b, size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, b.data() + at, 4);  // little-endian, as GLB is (and as this machine is)
+    return v;
+}
+
+// A glTF file as JSON and its GLB binary chunk ("" for a .gltf, or a GLB without one).
+struct GltfFile {
+    json doc;
+    std::string bin;
+    bool ok = false;
+};
+
+// The JSON chunk alone unless `with_bin` (a large file that needs no decoding is not read whole).
+GltfFile read_gltf(const std::string& path, bool with_bin) {
+    GltfFile f;
+    const std::string ext = lower_extension(path);
+    if (ext != ".glb" && ext != ".gltf") return f;
+    std::ifstream in(path, std::ios::binary);
+    std::string header(20, '\0');
+    in.read(header.data(), 20);
+    header.resize(size_t(in.gcount()));
+    std::string text;
+    if (header.size() == 20 && header.compare(0, 4, "glTF") == 0) {
+        const uint32_t length = le32(header, 12);
+        if (le32(header, 16) != kJsonChunk || length > kMaxFileBytes) return f;
+        text.assign(length, '\0');
+        in.read(text.data(), std::streamsize(length));
+        text.resize(size_t(in.gcount()));
+        if (with_bin) {
+            std::string chunk(8, '\0');
+            in.read(chunk.data(), 8);
+            if (in.gcount() == 8 && le32(chunk, 4) == kBinChunk && le32(chunk, 0) <= kMaxFileBytes) {
+                f.bin.assign(le32(chunk, 0), '\0');
+                in.read(f.bin.data(), std::streamsize(f.bin.size()));
+                f.bin.resize(size_t(in.gcount()));
+            }
+        }
+    } else {
+        text = read_bytes(path, kMaxFileBytes);
+    }
+    f.doc = json::parse(text, nullptr, false);
+    f.ok = !f.doc.is_discarded() && f.doc.is_object();
+    return f;
+}
+
+std::string first_unreadable(const json& doc) {
+    if (!doc.contains("extensionsRequired") || !doc["extensionsRequired"].is_array()) return "";
     for (const char* name : {"EXT_meshopt_compression", "KHR_mesh_quantization"})
-        for (const auto& e : j["extensionsRequired"])
+        for (const auto& e : doc["extensionsRequired"])
             if (e.is_string() && e.get<std::string>() == name) return name;
     return "";
 }
 
-void check_gltf_extensions(const std::string& path) {
-    const std::string ext = unreadable_gltf_extension(path);
-    if (ext.empty()) return;
-    const std::string what = ext == "KHR_mesh_quantization"
-                                 ? "its positions are quantized (glTF extension KHR_mesh_quantization, as gltfpack "
-                                   "writes by default), which the mesh reader (assimp) reads as garbage"
-                                 : "its buffers are compressed with meshoptimizer (glTF extension "
-                                   "EXT_meshopt_compression, gltfpack -c), which the mesh reader (assimp) cannot "
-                                   "decompress";
-    throw_input_error(path, what,
-                      "write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
-                      "gltfpack), then give shatter plain.glb");
+// Decoding, with every index and range checked against what the file holds.
+class Decoder {
+public:
+    Decoder(const std::string& path, GltfFile& file) : path_(path), f_(file), doc_(file.doc) {}
+
+    std::string glb() {
+        load_buffers();
+        decode_views();
+        dequantize_attributes();
+        bake_texture_transforms();
+        return write();
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw_input_error(path_, "its glTF " + what, std::string("check that the file is complete, ") + kFix);
+    }
+    const json& array(const char* key) const {
+        static const json empty = json::array();
+        return doc_.contains(key) && doc_[key].is_array() ? doc_[key] : empty;
+    }
+    static uint64_t number(const json& o, const char* key, uint64_t fallback) {
+        if (!o.contains(key)) return fallback;
+        return o[key].is_number_unsigned() ? o[key].get<uint64_t>() : UINT64_MAX;
+    }
+    uint64_t required(const json& o, const char* key, const std::string& what) const {
+        const uint64_t v = number(o, key, UINT64_MAX);
+        if (v == UINT64_MAX) fail(fmt::format("{} has no valid {}", what, key));
+        return v;
+    }
+
+    // Each buffer's bytes: the GLB's binary chunk, a data: URI, or a file beside the .gltf. A
+    // buffer that only backs compressed views (EXT_meshopt_compression's fallback) may have none.
+    void load_buffers() {
+        const json& buffers = array("buffers");
+        for (size_t i = 0; i < buffers.size(); ++i) {
+            const json& b = buffers[i];
+            std::string bytes;
+            if (b.contains("uri") && b["uri"].is_string()) {
+                const std::string uri = b["uri"].get<std::string>();
+                if (uri.rfind("data:", 0) == 0) {
+                    const size_t comma = uri.find(',');
+                    if (comma == std::string::npos || uri.find(";base64") > comma) fail(fmt::format("buffer {} has a data URI that is not base64", i));
+                    bytes = base64_decode(uri.substr(comma + 1), i);
+                } else {
+                    const fs::path file = fs::path(path_).parent_path() / uri;
+                    bytes = read_bytes(file.string(), kMaxFileBytes);
+                    if (bytes.empty()) fail(fmt::format("buffer {} ('{}') cannot be read beside the file", i, uri));
+                }
+            } else if (i == 0) {
+                bytes = f_.bin;
+            }
+            buffers_.push_back(std::move(bytes));
+        }
+    }
+    std::string base64_decode(const std::string& text, size_t buffer) const {
+        std::string out;
+        uint32_t acc = 0;
+        int bits = 0;
+        for (char c : text) {
+            int v;
+            if (c >= 'A' && c <= 'Z') v = c - 'A';
+            else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
+            else if (c >= '0' && c <= '9') v = c - '0' + 52;
+            else if (c == '+') v = 62;
+            else if (c == '/') v = 63;
+            else if (c == '=') break;
+            else fail(fmt::format("buffer {}'s data URI is not base64", buffer));
+            acc = (acc << 6) | uint32_t(v);
+            bits += 6;
+            if (bits >= 8) {
+                bits -= 8;
+                out.push_back(char((acc >> bits) & 0xFF));
+            }
+        }
+        return out;
+    }
+    const std::string& slice_source(uint64_t buffer, uint64_t offset, uint64_t length, const std::string& what,
+                                     std::string* out) const {
+        if (buffer >= buffers_.size()) fail(fmt::format("{} names buffer {}, which does not exist", what, buffer));
+        const std::string& b = buffers_[size_t(buffer)];
+        if (offset > b.size() || length > b.size() - offset)
+            fail(fmt::format("{} reaches past its buffer ({} + {} bytes of {})", what, offset, length, b.size()));
+        out->assign(b, size_t(offset), size_t(length));
+        return *out;
+    }
+
+    // Every buffer view's bytes, meshopt-compressed ones decoded.
+    void decode_views() {
+        const json& views = array("bufferViews");
+        for (size_t i = 0; i < views.size(); ++i) {
+            json& v = doc_["bufferViews"][i];
+            const std::string what = fmt::format("buffer view {}", i);
+            std::string data;
+            const json* ext = v.contains("extensions") && v["extensions"].contains("EXT_meshopt_compression")
+                                  ? &v["extensions"]["EXT_meshopt_compression"]
+                                  : nullptr;
+            if (ext) {
+                std::string source;
+                slice_source(required(*ext, "buffer", what), number(*ext, "byteOffset", 0),
+                             required(*ext, "byteLength", what), what, &source);
+                const uint64_t count = required(*ext, "count", what), stride = required(*ext, "byteStride", what);
+                const std::string mode = ext->value("mode", std::string()), filter = ext->value("filter", std::string("NONE"));
+                if (stride == 0 || stride > 256 || count > (uint64_t(1) << 31) / stride)
+                    fail(fmt::format("{} has {} elements of {} bytes", what, count, stride));
+                data.assign(size_t(count * stride), '\0');
+                const auto* src = reinterpret_cast<const unsigned char*>(source.data());
+                int status = -1;
+                if (mode == "ATTRIBUTES" && stride % 4 == 0)
+                    status = meshopt_decodeVertexBuffer(data.data(), size_t(count), size_t(stride), src, source.size());
+                else if (mode == "TRIANGLES" && (stride == 2 || stride == 4) && count % 3 == 0)
+                    status = meshopt_decodeIndexBuffer(data.data(), size_t(count), size_t(stride), src, source.size());
+                else if (mode == "INDICES" && (stride == 2 || stride == 4))
+                    status = meshopt_decodeIndexSequence(data.data(), size_t(count), size_t(stride), src, source.size());
+                if (status != 0)
+                    fail(fmt::format("{} does not decode (EXT_meshopt_compression mode {}, {} bytes per element)", what,
+                                     mode, stride));
+                if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8))
+                    meshopt_decodeFilterOct(data.data(), size_t(count), size_t(stride));
+                else if (filter == "QUATERNION" && stride == 8)
+                    meshopt_decodeFilterQuat(data.data(), size_t(count), size_t(stride));
+                else if (filter == "EXPONENTIAL" && stride % 4 == 0)
+                    meshopt_decodeFilterExp(data.data(), size_t(count), size_t(stride));
+                else if (filter != "NONE")
+                    fail(fmt::format("{} has filter {} for {} bytes per element", what, filter, stride));
+                v["extensions"].erase("EXT_meshopt_compression");
+                if (v["extensions"].empty()) v.erase("extensions");
+            } else {
+                slice_source(required(v, "buffer", what), number(v, "byteOffset", 0), required(v, "byteLength", what),
+                             what, &data);
+            }
+            views_.push_back(std::move(data));
+        }
+    }
+
+    // Integer vertex attributes as floats: positions, normals, tangents and texture coordinates
+    // (the attributes quantization changes; joints stay integers, colours and weights stay as glTF
+    // allows them).
+    void dequantize_attributes() {
+        std::map<uint64_t, bool> done;
+        const auto visit = [&](const json& attributes) {
+            if (!attributes.is_object()) return;
+            for (const auto& [name, index] : attributes.items()) {
+                const bool quantizable = name == "POSITION" || name == "NORMAL" || name == "TANGENT" ||
+                                         name.rfind("TEXCOORD_", 0) == 0;
+                if (!quantizable || !index.is_number_unsigned()) continue;
+                const uint64_t a = index.get<uint64_t>();
+                if (!done.emplace(a, true).second) continue;
+                to_float(a);
+            }
+        };
+        for (const auto& mesh : array("meshes"))
+            if (mesh.contains("primitives") && mesh["primitives"].is_array())
+                for (const auto& p : mesh["primitives"]) {
+                    if (p.contains("attributes")) visit(p["attributes"]);
+                    if (p.contains("targets") && p["targets"].is_array())
+                        for (const auto& t : p["targets"]) visit(t);
+                }
+    }
+    void to_float(uint64_t index) {
+        if (index >= array("accessors").size()) fail(fmt::format("attribute names accessor {}, which does not exist", index));
+        json& a = doc_["accessors"][size_t(index)];
+        const std::string what = fmt::format("accessor {}", index);
+        const int type = a.value("componentType", 0);
+        if (type == kFloat) return;
+        if (a.contains("sparse")) fail(what + " is sparse and quantized, which is not decoded here");
+        const std::map<std::string, int> widths = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}};
+        const auto w = widths.find(a.value("type", std::string()));
+        const int size = type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : type == 5125 ? 4 : 0;
+        if (w == widths.end() || size == 0) fail(what + " has a type or component type glTF does not define");
+        const int n = w->second;
+        const uint64_t count = required(a, "count", what), view = required(a, "bufferView", what);
+        if (view >= views_.size()) fail(fmt::format("{} names buffer view {}, which does not exist", what, view));
+        const std::string& data = views_[size_t(view)];
+        const uint64_t offset = number(a, "byteOffset", 0), element = uint64_t(n * size);
+        const uint64_t stride = number(doc_["bufferViews"][size_t(view)], "byteStride", element);
+        if (count == 0 || offset > data.size() || stride < element ||
+            (count - 1) > (data.size() - offset - std::min<uint64_t>(element, data.size() - offset)) / stride ||
+            data.size() - offset < element)
+            fail(fmt::format("{} reaches past its buffer view ({} elements of {} bytes, stride {})", what, count, element,
+                             stride));
+        const bool normalized = a.value("normalized", false);
+        const auto value = [&](const unsigned char* p) -> float {
+            switch (type) {
+                case 5120: { int8_t c; std::memcpy(&c, p, 1); return normalized ? std::max(c / 127.0f, -1.0f) : float(c); }
+                case 5121: return normalized ? *p / 255.0f : float(*p);
+                case 5122: { int16_t c; std::memcpy(&c, p, 2); return normalized ? std::max(c / 32767.0f, -1.0f) : float(c); }
+                case 5123: { uint16_t c; std::memcpy(&c, p, 2); return normalized ? c / 65535.0f : float(c); }
+                default: { uint32_t c; std::memcpy(&c, p, 4); return normalized ? float(c / 4294967295.0) : float(c); }
+            }
+        };
+        std::string floats(size_t(count) * size_t(n) * 4, '\0');
+        auto* out = reinterpret_cast<float*>(floats.data());
+        const auto* in = reinterpret_cast<const unsigned char*>(data.data() + offset);
+        for (uint64_t e = 0; e < count; ++e)
+            for (int c = 0; c < n; ++c) out[e * uint64_t(n) + uint64_t(c)] = value(in + e * stride + uint64_t(c * size));
+        // min and max (POSITION must have them) in the same units.
+        for (const char* bound : {"min", "max"})
+            if (a.contains(bound) && a[bound].is_array())
+                for (auto& v : a[bound])
+                    if (v.is_number()) {
+                        const double d = v.get<double>();
+                        v = normalized ? (type == 5121 ? d / 255 : type == 5123 ? d / 65535
+                                          : type == 5120 ? std::max(d / 127, -1.0)
+                                          : type == 5122 ? std::max(d / 32767, -1.0) : d / 4294967295.0)
+                                       : d;
+                    }
+        json view_json = {{"buffer", 0}, {"byteLength", floats.size()}};
+        doc_["bufferViews"].push_back(view_json);
+        views_.push_back(std::move(floats));
+        converted_[index] = views_.size() - 1;
+        a["bufferView"] = views_.size() - 1;
+        a["componentType"] = kFloat;
+        a.erase("byteOffset");
+        a.erase("normalized");
+    }
+
+    // Quantized texture coordinates come with a KHR_texture_transform on the material that scales
+    // them back; assimp 5.2 does not apply it as glTF defines it. It is applied here instead
+    // (uv' = T(offset) R(rotation) S(scale) uv, rotation [[cos, sin], [-sin, cos]]) to the
+    // coordinates the base colour texture reads, and taken off the material's textures that carry
+    // the same transform. A coordinate set two transforms would disagree on is left as it is.
+    void bake_texture_transforms() {
+        const json& materials = array("materials");
+        std::map<size_t, json> wanted;  // converted TEXCOORD accessor -> its transform
+        std::map<size_t, bool> clash;
+        for (const auto& mesh : array("meshes"))
+            if (mesh.contains("primitives") && mesh["primitives"].is_array())
+                for (const auto& p : mesh["primitives"]) {
+                    if (!p.contains("material") || !p["material"].is_number_unsigned() || !p.contains("attributes")) continue;
+                    const size_t m = p["material"].get<size_t>();
+                    if (m >= materials.size()) continue;
+                    const json* t = base_colour_transform(materials[m]);
+                    if (!t) continue;
+                    const json& info = materials[m]["pbrMetallicRoughness"]["baseColorTexture"];
+                    const int set = t->contains("texCoord") ? t->value("texCoord", 0) : info.value("texCoord", 0);
+                    const std::string name = "TEXCOORD_" + std::to_string(set);
+                    if (!p["attributes"].contains(name) || !p["attributes"][name].is_number_unsigned()) continue;
+                    const size_t a = p["attributes"][name].get<size_t>();
+                    if (!converted_.count(a)) continue;
+                    const auto [it, added] = wanted.emplace(a, *t);
+                    if (!added && it->second != *t) clash[a] = true;
+                }
+        std::vector<json> baked;
+        for (const auto& [a, t] : wanted) {
+            if (clash.count(a)) continue;
+            const double r = t.value("rotation", 0.0), c = std::cos(r), sn = std::sin(r);
+            const auto pair = [&t](const char* key, double fallback) {
+                return t.contains(key) && t[key].is_array() && t[key].size() == 2 && t[key][0].is_number() && t[key][1].is_number()
+                           ? std::array<double, 2>{t[key][0].get<double>(), t[key][1].get<double>()}
+                           : std::array<double, 2>{fallback, fallback};
+            };
+            const std::array<double, 2> offset = pair("offset", 0), scale = pair("scale", 1);
+            std::string& data = views_[converted_[a]];
+            const json& acc = doc_["accessors"][a];
+            if (acc.value("type", std::string()) != "VEC2") continue;
+            auto* uv = reinterpret_cast<float*>(data.data());
+            for (size_t i = 0; i + 1 < data.size() / 4; i += 2) {
+                const double u = uv[i] * scale[0], v = uv[i + 1] * scale[1];
+                uv[i] = float(c * u + sn * v + offset[0]);
+                uv[i + 1] = float(-sn * u + c * v + offset[1]);
+            }
+            json& a_json = doc_["accessors"][a];
+            a_json.erase("min");
+            a_json.erase("max");
+            baked.push_back(t);
+        }
+        // The transforms now in the coordinates come off every texture that carries one of them.
+        if (baked.empty()) return;
+        for (auto& material : doc_["materials"]) strip_transforms(material, baked);
+    }
+    static const json* base_colour_transform(const json& material) {
+        if (!material.contains("pbrMetallicRoughness")) return nullptr;
+        const json& pbr = material["pbrMetallicRoughness"];
+        if (!pbr.contains("baseColorTexture")) return nullptr;
+        const json& info = pbr["baseColorTexture"];
+        if (!info.contains("extensions") || !info["extensions"].contains("KHR_texture_transform")) return nullptr;
+        return &info["extensions"]["KHR_texture_transform"];
+    }
+    static void strip_transforms(json& node, const std::vector<json>& baked) {
+        if (node.is_object()) {
+            if (node.contains("index") && node.contains("extensions") && node["extensions"].is_object() &&
+                node["extensions"].contains("KHR_texture_transform") &&
+                std::find(baked.begin(), baked.end(), node["extensions"]["KHR_texture_transform"]) != baked.end()) {
+                node["extensions"].erase("KHR_texture_transform");
+                if (node["extensions"].empty()) node.erase("extensions");
+            }
+            for (auto& [key, value] : node.items()) strip_transforms(value, baked);
+        } else if (node.is_array()) {
+            for (auto& value : node) strip_transforms(value, baked);
+        }
+    }
+
+    // One binary chunk holding every view, 4-byte aligned; the two extensions no longer listed.
+    std::string write() {
+        std::string bin;
+        for (size_t i = 0; i < views_.size(); ++i) {
+            json& v = doc_["bufferViews"][i];
+            v["buffer"] = 0;
+            v["byteOffset"] = bin.size();
+            v["byteLength"] = views_[i].size();
+            bin += views_[i];
+            bin.resize((bin.size() + 3) / 4 * 4, '\0');
+        }
+        doc_["buffers"] = json::array({json{{"byteLength", bin.size()}}});
+        for (const char* list : {"extensionsUsed", "extensionsRequired"})
+            if (doc_.contains(list) && doc_[list].is_array()) {
+                json kept = json::array();
+                for (const auto& e : doc_[list])
+                    if (!(e.is_string() && (e == "EXT_meshopt_compression" || e == "KHR_mesh_quantization"))) kept.push_back(e);
+                doc_[list] = kept;
+            }
+        std::string text = doc_.dump();
+        text.resize((text.size() + 3) / 4 * 4, ' ');
+        std::string out;
+        const auto put = [&out](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+        out += "glTF";
+        put(2);
+        put(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+        put(uint32_t(text.size()));
+        put(kJsonChunk);
+        out += text;
+        put(uint32_t(bin.size()));
+        put(kBinChunk);
+        out += bin;
+        return out;
+    }
+
+    const std::string& path_;
+    GltfFile& f_;
+    json& doc_;
+    std::vector<std::string> buffers_, views_;
+    std::map<size_t, size_t> converted_;  // accessor -> the view of its floats
+};
+
+}  // namespace
+
+std::string unreadable_gltf_extension(const std::string& path) {
+    const GltfFile f = read_gltf(path, false);
+    return f.ok ? first_unreadable(f.doc) : "";
+}
+
+std::optional<std::string> plain_glb(const std::string& path) {
+    if (unreadable_gltf_extension(path).empty()) return std::nullopt;
+    GltfFile f = read_gltf(path, true);
+    return Decoder(path, f).glb();
 }
 
 }  // namespace shatter

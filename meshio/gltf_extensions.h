@@ -1,25 +1,30 @@
-// glTF extensions the mesh reader (Debian's assimp 5.2) cannot read, refused before it reads the
-// file. Both change how positions are stored, and both come from gltfpack, the usual optimizer
-// for web assets:
-//   KHR_mesh_quantization: integer positions scaled by the node's transform (gltfpack's default).
-//     assimp takes the integers' bytes for floats: a 1 m cube came out 1e-4 m by 1e-45 m, refused
-//     as a mesh without area, which is not the reason.
-//   EXT_meshopt_compression: meshoptimizer's compressed buffers (gltfpack -c). assimp refuses them
-//     as "a buffer with non-zero length missing the uri attribute".
-// Draco (KHR_draco_mesh_compression) is read: Debian's assimp is built with it.
+// glTF files as web tools write them, made readable for the mesh reader (Debian's assimp 5.2).
+// gltfpack, the usual optimizer for web assets, stores positions in two ways assimp cannot read:
+//   KHR_mesh_quantization: integer attributes (positions scaled back by the node's transform;
+//     gltfpack's default). assimp takes the integers' bytes for floats: a 1 m cube came out
+//     1e-4 m by 1e-45 m.
+//   EXT_meshopt_compression: meshoptimizer's compressed buffer views (gltfpack -c). assimp refuses
+//     them as "a buffer with non-zero length missing the uri attribute".
+// plain_glb decodes both (meshoptimizer's decoders, its filters for normals, rotations and
+// exponents) into a GLB with float attributes and plain buffer views, which assimp then reads
+// from memory: the same file otherwise (nodes, their transforms, materials, embedded images; a
+// .gltf's images keep their uri, which the appearance reader resolves beside the file). Draco
+// (KHR_draco_mesh_compression) needs none of this: Debian's assimp links libdraco.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace shatter {
 
-// For a .glb or .gltf file: the first of those extensions (the compression, then the quantization
-// that comes with it) its extensionsRequired lists, or ""
-// (also for a file that is not glTF or whose JSON does not parse: the reader says what is wrong).
+// The first of those extensions that a .glb's or .gltf's extensionsRequired lists (the compression
+// before the quantization that comes with it), or "" (also for a file that is not glTF, or whose
+// JSON does not parse: the reader says what is wrong with it).
 std::string unreadable_gltf_extension(const std::string& path);
 
-// Throws Error(BadInput) naming `path`, the extension and how to write the file without it, when
-// unreadable_gltf_extension finds one.
-void check_gltf_extensions(const std::string& path);
+// The file as a plain GLB when unreadable_gltf_extension finds one, else nullopt. Throws
+// Error(BadInput) naming the file and what is out of bounds or not decodable, with the gltfpack
+// command that writes the file without them.
+std::optional<std::string> plain_glb(const std::string& path);
 
 }  // namespace shatter

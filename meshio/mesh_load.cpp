@@ -260,7 +260,9 @@ LoadedMesh import_in_process(const std::string& path) {
                                     aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
                                     aiComponent_ANIMATIONS | aiComponent_TEXTURES | aiComponent_LIGHTS |
                                     aiComponent_CAMERAS | aiComponent_MATERIALS);
-    const aiScene* scene = importer.ReadFile(path, 0);
+    // A glTF file as gltfpack writes it, decoded first (meshio/gltf_extensions.h).
+    const std::optional<std::string> glb = plain_glb(path);
+    const aiScene* scene = glb ? importer.ReadFileFromMemory(glb->data(), glb->size(), 0, "glb") : importer.ReadFile(path, 0);
     if (scene == nullptr) {
         throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), format_fix(path));
     }
@@ -377,7 +379,6 @@ LoadedMesh load_mesh_file(const std::string& path) {
     // assimp crashes on some malformed PLY headers (meshio/ply_header.h): check them first.
     // The first 64 kB: what a PLY header may take.
     if (const std::string head = read_file_head(path, 64 * 1024); looks_like_ply(head)) check_ply_header(head, path);
-    check_gltf_extensions(path);  // positions assimp would misread (meshio/gltf_extensions.h)
 
     return import_isolated(path);
 }

@@ -1,0 +1,120 @@
+// glTF files as gltfpack writes them (meshio/gltf_extensions.h): quantized positions and texture
+// coordinates (KHR_mesh_quantization, with a KHR_texture_transform scaling them back), and the same
+// meshopt-compressed (EXT_meshopt_compression). Both read as the OBJ they were made from: the
+// same surface, and every triangle reads the same part of the texture. A damaged compressed file
+// is refused naming the file and the fix.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "core/error.h"
+#include "meshio/appearance.h"
+#include "meshio/gltf_extensions.h"
+#include "meshio/mesh_load.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+const std::string kDir = SHATTER_SOURCE_DIR "/tests/fixtures/gltfpack/";
+
+TEST(GltfExtensions, FindsTheExtensionsTheReaderCannotTake) {
+    EXPECT_EQ(unreadable_gltf_extension(kDir + "textured_cube.quantized.glb"), "KHR_mesh_quantization");
+    EXPECT_EQ(unreadable_gltf_extension(kDir + "textured_cube.meshopt.glb"), "EXT_meshopt_compression");
+    EXPECT_EQ(unreadable_gltf_extension(kDir + "textured_cube.obj"), "");
+    EXPECT_FALSE(plain_glb(kDir + "textured_cube.obj").has_value());
+    EXPECT_EQ(unreadable_gltf_extension("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb"), "");
+}
+
+// The unit cube: 8 corners, 12 triangles, the OBJ's volume and 1 m on a side (glTF is in metres),
+// within gltfpack's 14-bit position grid.
+TEST(GltfExtensions, QuantizedAndCompressedCubesReadAsTheCube) {
+    // The signed volume (the divergence theorem): the same size and the same winding as the OBJ's
+    // (whose faces the script wound inwards).
+    const auto volume = [](const TriangleMesh& m) {
+        double v = 0;
+        for (const Tri& t : m.triangles) v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6;
+        return v;
+    };
+    const double obj = volume(load_mesh_file(kDir + "textured_cube.obj").mesh);
+    EXPECT_NEAR(std::abs(obj), 1.0, 1e-9);
+    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb"}) {
+        const LoadedMesh loaded = load_mesh_file(kDir + name);
+        const TriangleMesh& m = loaded.mesh;
+        EXPECT_EQ(m.vertices.size(), 8u) << name;
+        EXPECT_EQ(m.triangles.size(), 12u) << name;
+        EXPECT_NEAR(volume(m), obj, 1e-3) << name;
+        Vec3 lo = Vec3::Constant(1e9), hi = -lo;
+        for (const Vec3& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        EXPECT_NEAR((hi - lo - Vec3::Ones()).cwiseAbs().maxCoeff(), 0, 1e-3) << name;
+        EXPECT_EQ(loaded.metres_per_unit, 1.0) << name;
+    }
+}
+
+// Per triangle, its centre and the texture coordinate there: each packed triangle has one of the
+// OBJ's at the same place reading the same point of the texture (within the 12-bit grid gltfpack
+// quantizes coordinates to).
+TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
+    const Appearance obj = load_appearance(kDir + "textured_cube.obj");
+    ASSERT_EQ(obj.mesh.triangles.size(), 12u);
+    ASSERT_EQ(obj.uv.size(), obj.mesh.vertices.size());
+    const auto centre = [](const Appearance& a, size_t t) {
+        Vec3 p = Vec3::Zero();
+        std::array<double, 2> uv{0, 0};
+        for (uint32_t v : a.mesh.triangles[t]) {
+            p += a.mesh.vertices[v] / 3;
+            uv[0] += a.uv[v][0] / 3, uv[1] += a.uv[v][1] / 3;
+        }
+        return std::make_pair(p, uv);
+    };
+    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb"}) {
+        const Appearance packed = load_appearance(kDir + name);
+        ASSERT_EQ(packed.mesh.triangles.size(), 12u) << name;
+        ASSERT_EQ(packed.uv.size(), packed.mesh.vertices.size()) << name;
+        EXPECT_FALSE(packed.plain()) << name;
+        int textured = 0;
+        for (const Material& m : packed.materials) textured += !m.texture.empty();
+        EXPECT_EQ(textured, 1) << name << ": the PNG comes embedded";
+        for (size_t t = 0; t < packed.mesh.triangles.size(); ++t) {
+            const auto [p, uv] = centre(packed, t);
+            double best = 1e9, uv_error = 1e9;
+            for (size_t o = 0; o < obj.mesh.triangles.size(); ++o) {
+                const auto [q, uv_obj] = centre(obj, o);
+                const double d = (p - q).norm();
+                if (d < best) best = d, uv_error = std::max(std::abs(uv[0] - uv_obj[0]), std::abs(uv[1] - uv_obj[1]));
+            }
+            EXPECT_LT(best, 1e-3) << name << " triangle " << t;
+            EXPECT_LT(uv_error, 2e-3) << name << " triangle " << t << " reads another part of the texture";
+        }
+    }
+}
+
+// A compressed buffer view cut short: refused with the file's name and gltfpack's fix.
+TEST(GltfExtensions, ADamagedCompressedFileIsRefusedWithTheFix) {
+    testing_support::TempDir dir;
+    std::string bytes;
+    {
+        std::ifstream in(kDir + "textured_cube.meshopt.glb", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The binary chunk's compressed bytes after the JSON, overwritten with zeros.
+    const size_t json_length = size_t(uint8_t(bytes[12])) | size_t(uint8_t(bytes[13])) << 8;
+    for (size_t i = 20 + json_length + 8; i < bytes.size(); ++i) bytes[i] = 0;
+    const std::string path = dir.write("damaged.glb", bytes);
+    try {
+        (void)plain_glb(path);
+        ADD_FAILURE() << "a damaged file decoded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        const std::string what = e.what();
+        EXPECT_NE(what.find("damaged.glb"), std::string::npos) << what;
+        EXPECT_NE(what.find("gltfpack -i FILE -o plain.glb -noq"), std::string::npos) << what;
+    }
+}
+
+}  // namespace
+}  // namespace shatter
