@@ -344,7 +344,9 @@ private:
                     if (!added && it->second != *t) clash[a] = true;
                 }
         std::vector<json> baked;
-        for (const auto& [a, t] : wanted) {
+        for (const auto& entry : wanted) {
+            const size_t a = entry.first;
+            const json& t = entry.second;  // (not a structured binding: the lambda below captures it)
             if (clash.count(a)) continue;
             const double r = t.value("rotation", 0.0), c = std::cos(r), sn = std::sin(r);
             const auto pair = [&t](const char* key, double fallback) {
