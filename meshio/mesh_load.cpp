@@ -16,6 +16,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -25,6 +27,8 @@
 
 namespace shatter {
 namespace {
+
+namespace fs = std::filesystem;
 
 using Mat4 = Eigen::Matrix4d;
 
@@ -187,6 +191,19 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+// Whether an executable named blender is on PATH.
+bool blender_on_path() {
+    const char* env = std::getenv("PATH");
+    std::string dirs = env ? env : "";
+    for (size_t start = 0; start <= dirs.size();) {
+        const size_t colon = std::min(dirs.find(':', start), dirs.size());
+        const fs::path candidate = fs::path(dirs.substr(start, colon - start)) / "blender";
+        if (colon > start && ::access(candidate.c_str(), X_OK) == 0) return true;
+        start = colon + 1;
+    }
+    return false;
+}
+
 // What to do about a file assimp cannot read. Blender's own files are read only as Blender 2.4 to
 // 2.7x saved them (their header: "BLENDER", a pointer size, an endianness, three version digits);
 // a newer one, or one saved compressed by Blender 3 and later (zstd), is exported from Blender.
@@ -196,8 +213,13 @@ std::string format_fix(const std::string& path) {
     if (!blend)
         return "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, 3DS, "
                "FBX, ...)";
-    const std::string export_it =
-        "in Blender, File > Export > glTF 2.0 (.glb) or Wavefront (.obj), and give shatter that file";
+    std::string export_it = "in Blender, File > Export > glTF 2.0 (.glb) or Wavefront (.obj), and give shatter that file";
+    // With Blender installed, the command that does it (for a name the quotes below can hold).
+    const fs::path glb = fs::path(path).replace_extension(".glb");
+    if (blender_on_path() && path.find_first_of("'\"\\\n") == std::string::npos)
+        export_it += fmt::format("; here: blender -b '{}' --python-expr \"import bpy; "
+                                 "bpy.ops.export_scene.gltf(filepath='{}')\"",
+                                 path, glb.string());
     const auto digit = [&head](size_t i) { return head.size() > i && std::isdigit(static_cast<unsigned char>(head[i])); };
     std::string newer;
     if (head.rfind("BLENDER", 0) == 0 && digit(9) && digit(10) && digit(11) && head.substr(9, 3) >= "280")
