@@ -1,4 +1,4 @@
-// shatter info FILE [--json]: summarizes any stage file.
+// shatter info FILE [--json]: summarizes any stage file, or a mesh file as shatter run would take it.
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -10,11 +10,63 @@
 #include "core/stage_file.h"
 #include "core/trajectory.h"
 #include "core/trajectory_summary.h"
+#include "meshio/mesh_load.h"
+#include "prescore/adapt.h"
+#include "prescore/mesh_check.h"
 #include "prescore/model_summary.h"
 
 namespace shatter {
 
 namespace {
+
+// A mesh file as `shatter run MESH` takes it: its size (the file's units, or the default size), its
+// check in metres, whether prescore meshes it as it is or wraps it first, and whether it shows
+// anything beyond its shape.
+nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) {
+    LoadedMesh loaded = load_mesh_file(path);
+    MeshSettings settings;
+    settings.path = path;
+    AutoChoices choices;
+    const double scale = choose_scale(loaded.mesh, loaded.metres_per_unit, settings, choices);
+    for (Vec3& v : loaded.mesh.vertices) v *= scale;
+    const MeshCheck c = check_mesh(loaded.mesh);
+    MeshCheck oriented = c;
+    if (c.closed() && c.volume < 0) oriented.volume = -c.volume;
+    std::string why;
+    const bool as_is = meshes_as_it_is(c, oriented, true, &why);
+    const Vec3 extent = c.bbox_max - c.bbox_min;
+    nlohmann::ordered_json j;
+    j["kind"] = "mesh";
+    j["vertices"] = c.vertices;
+    j["triangles"] = c.triangles;
+    j["closed"] = c.closed();
+    j["manifold"] = c.manifold();
+    j["oriented"] = c.oriented();
+    j["components"] = c.components;
+    j["self_intersections"] = c.self_intersections;
+    j["metres_per_unit_in_file"] = loaded.metres_per_unit > 0 ? nlohmann::ordered_json(loaded.metres_per_unit) : nullptr;
+    j["scale_m_per_unit"] = scale;
+    j["size_m"] = {extent.x(), extent.y(), extent.z()};
+    j["volume_m3"] = c.volume;
+    j["area_m2"] = c.area;
+    j["meshed_as_it_is"] = as_is;
+    if (!as_is) j["repair_why"] = why;
+    j["shows_only_its_shape"] = loaded.plain;
+    j["warnings"] = choices.warnings;
+    const std::string size =
+        choices.list.empty()
+            ? fmt::format("{:.4g} m long, by the file's units ({:g} m per unit)", extent.maxCoeff(), scale)
+            : fmt::format("{:.4g} m long: the file has no units, and shatter run makes it that long ({:.6g} m per "
+                          "unit; --size or --scale sets another)", extent.maxCoeff(), scale);
+    *text = fmt::format("kind          mesh\nmesh          {}\nsize          {}\nmeshing       {}\nappearance    {}\n",
+                        describe(c), size,
+                        as_is ? "as it is (Mesh_3 fills it with tets)" : "alpha-wrapped first: " + why,
+                        loaded.plain ? "its shape only (drawn in the material colour)"
+                                     : "materials, textures or vertex colours (drawn on the pieces' outer faces)");
+    for (const std::string& w : choices.warnings) *text += "warning       " + w + "\n";
+    *text += fmt::format("next          shatter run {}\n", path);
+    return j;
+}
 
 int run(const std::string& path, bool json) {
     const std::string bytes = read_file(path, "stage file");
@@ -27,9 +79,11 @@ int run(const std::string& path, bool json) {
     } else if (magic == kTrajectoryMagic) {
         summary = trajectory_summary(decode_trajectory(bytes, path));
         text = trajectory_summary_text(summary);
+    } else if (!magic.empty()) {
+        throw_input_error(path, "unknown stage file kind " + magic,
+                          "pass a file written by shatter (a .model from prescore, a trajectory from simulate) or a mesh");
     } else {
-        throw_input_error(path, magic.empty() ? "not a shatter stage file" : "unknown stage file kind " + magic,
-                          "pass a file written by shatter (a .model from prescore, a trajectory from simulate)");
+        summary = mesh_summary(path, &text);  // not a stage file: read as a mesh (its errors say why not)
     }
     summary["file"] = path;
     if (json)
@@ -47,8 +101,10 @@ RunCommand add_info_command(CLI::App& root) {
     CLI::App* c = root.add_subcommand("info", "Summarize a stage file (model: pieces, tets, constraints, piece pairs, "
                                               "mass, volume, collision parts, connectivity; trajectory: frames, "
                                               "fps, duration, pieces, props, complete, settings, per-piece path "
-                                              "length, top speed and final position).");
-    c->add_option("file", *path, "the stage file")->required();
+                                              "length, top speed and final position), or a mesh file as shatter run "
+                                              "takes it (its size in metres, closed, manifold, crossings, whether it is "
+                                              "meshed as it is or wrapped first, its appearance).");
+    c->add_option("file", *path, "the stage file or mesh file")->required();
     c->add_flag("--json", *json, "print JSON instead of text");
     return [path, json] { return run(*path, *json); };
 }

@@ -10,6 +10,8 @@
 #include <numeric>
 #include <sstream>
 
+#include <fmt/format.h>
+
 namespace shatter {
 namespace {
 
@@ -190,5 +192,32 @@ bool can_tetrahedralize(const MeshCheck& c, std::string* why) {
     if (why != nullptr) *why = problem + "; repair it with alpha wrapping (closes, cleans and orients any mesh)";
     return false;
 }
+
+bool is_sheet(const MeshCheck& c, std::string* why) {
+    const Vec3 extent = c.bbox_max - c.bbox_min;
+    const double d = c.diagonal;
+    const bool flat = extent.minCoeff() <= 1e-6 * d;
+    const bool empty_inside = c.closed() && std::abs(c.volume) <= 1e-9 * d * d * d;
+    if (!flat && !empty_inside) return false;
+    *why = fmt::format("the mesh is a sheet: {} (bounding box {:.4g} x {:.4g} x {:.4g} m, volume {:.4g} m^3); repair it "
+                       "with alpha wrapping, which gives it a thickness",
+                       flat ? "flat" : "it encloses no volume", extent.x(), extent.y(), extent.z(), c.volume);
+    return true;
+}
+
+size_t max_self_intersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
+
+bool meshes_as_it_is(const MeshCheck& input, const MeshCheck& oriented, bool count_crossings, std::string* why) {
+    std::string reason;
+    bool usable = !is_sheet(input, &reason) && can_tetrahedralize(oriented, &reason);
+    if (usable && count_crossings && input.self_intersections > max_self_intersections(input)) {
+        usable = false;
+        reason = fmt::format("{} self-intersecting triangle pairs (more than {})", input.self_intersections,
+                             max_self_intersections(input));
+    }
+    if (why != nullptr) *why = reason;
+    return usable;
+}
+
 
 }  // namespace shatter

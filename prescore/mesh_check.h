@@ -77,4 +77,22 @@ bool orient_outward(TriangleMesh& mesh);
 // meshes, but badly; alpha_wrap it first.
 bool can_tetrahedralize(const MeshCheck& check, std::string* why);
 
+// A sheet: all points in a plane, or a closed surface that encloses nothing (a plane's two sides).
+// Mesh_3 finds no inside; the repair wraps it (a sheet of twice the offset), and adapt then gives
+// the walls a thickness the tets resolve (prescore/adapt.h), as it does for any thin wall. *why
+// says so when it is one.
+bool is_sheet(const MeshCheck& check, std::string* why);
+
+// Self-intersecting pairs a mesh may have and still go to Mesh_3 as it is: 1% of its triangles
+// (at least 8). A few crossing triangles (the bunny has two pairs) only blur the surface locally;
+// many make Mesh_3 refine around the crossings without end.
+size_t max_self_intersections(const MeshCheck& check);
+
+// Whether prescore gives the mesh to Mesh_3 as it is, from its check (`input`, with its
+// self-intersections searched) and the check of it turned outward (`oriented`: orient_outward
+// changes only the volume's sign). Not a sheet, can_tetrahedralize, and (with `count_crossings`)
+// no more crossing pairs than max_self_intersections. Else false, and *why says what the repair
+// (alpha wrapping) is for.
+bool meshes_as_it_is(const MeshCheck& input, const MeshCheck& oriented, bool count_crossings, std::string* why);
+
 }  // namespace shatter

@@ -82,24 +82,6 @@ void refuse_without_area(const MeshCheck& c, const std::string& path) {
     }
 }
 
-// A sheet: all points in a plane, or a closed surface that encloses nothing (a plane's two sides).
-// Mesh_3 finds no inside; the repair wraps it (a sheet of twice the offset), and adapt then gives
-// the walls a thickness the tets resolve (prescore/adapt.h), as it does for any thin wall.
-bool is_sheet(const MeshCheck& c, std::string* why) {
-    const Vec3 extent = c.bbox_max - c.bbox_min;
-    const double d = c.diagonal;
-    const bool flat = extent.minCoeff() <= 1e-6 * d;
-    const bool empty_inside = c.closed() && std::abs(c.volume) <= 1e-9 * d * d * d;
-    if (!flat && !empty_inside) return false;
-    *why = fmt::format("the mesh is a sheet: {} (bounding box {:.4g} x {:.4g} x {:.4g} m, volume {:.4g} m^3); repair it "
-                       "with alpha wrapping, which gives it a thickness",
-                       flat ? "flat" : "it encloses no volume", extent.x(), extent.y(), extent.z(), c.volume);
-    return true;
-}
-
-// Self-intersecting pairs a mesh may have and still go to Mesh_3 as it is: 1% of its triangles.
-size_t max_self_intersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
-
 // The mesh Mesh_3 will see: the input when it can be tetrahedralized as it is, else its alpha
 // wrap when the repair mode allows.
 TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, PrescoreReport& report) {
@@ -111,15 +93,8 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
     MeshCheck oriented = report.input;
     if (report.input.closed() && report.input.volume < 0 && orient_outward(mesh)) oriented.volume = -oriented.volume;
     std::string why;
-    bool usable = !is_sheet(report.input, &why) && can_tetrahedralize(oriented, &why);
-    if (usable && settings.repair != RepairMode::Never &&
-        report.input.self_intersections > max_self_intersections(report.input)) {
-        // A few crossing triangles (the bunny has two pairs) only blur the surface locally; many
-        // make Mesh_3 refine around the crossings without end.
-        usable = false;
-        why = fmt::format("{} self-intersecting triangle pairs (more than {})", report.input.self_intersections,
-                          max_self_intersections(report.input));
-    }
+    // With repair "never", crossings are the user's to answer for: Mesh_3 is tried on them.
+    const bool usable = meshes_as_it_is(report.input, oriented, settings.repair != RepairMode::Never, &why);
     if (settings.repair == RepairMode::Never && !usable)
         throw_input_error(settings.path, "the mesh cannot be tetrahedralized as it is: " + why,
                           "allow repair with --repair auto (alpha wrapping), or fix the mesh");

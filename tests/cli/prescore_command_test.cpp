@@ -4,6 +4,8 @@
 
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "core/model_io.h"
 #include "prescore/tet_topology.h"
 #include "support/run_command.h"
@@ -98,6 +100,38 @@ TEST(PrescoreCommand, AFileInMetresThatMakesAnEngine743MetresLongIsWarnedWithThe
     const std::string log = r.out + r.err;
     EXPECT_NE(log.find("2CylinderEngine.glb: the mesh is 743.4 m long by its file's units"), std::string::npos) << log;
     EXPECT_NE(log.find("0.743 m long ([mesh] scale = 0.001)"), std::string::npos) << log;
+}
+
+// `shatter info MESH`: the mesh as shatter run takes it. The unitless unit cube is made 0.3 m long
+// (0.3 m per unit, 0.027 m^3) and meshed as it is; with two faces gone it is wrapped first, and
+// says why; the engine is 743.4 m long by its glTF units, with the warning that says so.
+TEST(InfoCommand, AMeshIsDescribedAsShatterRunTakesIt) {
+    TempDir dir;
+    auto r = run_shatter({"info", SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "mesh");
+    EXPECT_EQ(j["triangles"], 12);
+    EXPECT_TRUE(j["closed"].get<bool>());
+    EXPECT_NEAR(j["scale_m_per_unit"].get<double>(), 0.3, 1e-12);
+    EXPECT_TRUE(j["metres_per_unit_in_file"].is_null());
+    EXPECT_NEAR(j["volume_m3"].get<double>(), 0.027, 1e-12);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(j["size_m"][a].get<double>(), 0.3, 1e-12);
+    EXPECT_TRUE(j["meshed_as_it_is"].get<bool>());
+
+    // The cube without its last two triangles (one face): open, so wrapped first.
+    std::string open = slurp(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj");
+    for (int k = 0; k < 2; ++k) open = open.substr(0, open.rfind("\nf ")) + "\n";
+    r = run_shatter({"info", dir.write("open.obj", open)});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("meshing       alpha-wrapped first: the mesh is not closed (4 boundary edges)"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("next          shatter run "), std::string::npos) << r.out;
+
+    r = run_shatter({"info", "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("size          743.4 m long, by the file's units (1 m per unit)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("warning       "), std::string::npos) << r.out;
 }
 
 // One bad input: the exit code, a message naming `expect`, and no file left in the output folder.
