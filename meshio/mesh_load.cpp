@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "core/isolated.h"
@@ -401,6 +402,8 @@ LoadedMesh load_mesh_file(const std::string& path) {
     // assimp crashes on some malformed PLY headers (meshio/ply_header.h): check them first.
     // The first 64 kB: what a PLY header may take.
     if (const std::string head = read_file_head(path, 64 * 1024); looks_like_ply(head)) check_ply_header(head, path);
+    if (const std::string ext = unreadable_gltf_extension(path); !ext.empty())
+        spdlog::info("mesh: {} uses {} (as gltfpack writes it): decoded before it is read", path, ext);
 
     return import_isolated(path);
 }
