@@ -27,6 +27,8 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     MeshSettings settings;
     settings.path = path;
     AutoChoices choices;
+    const bool turned = z_up(settings.up, path);
+    if (turned) stand_up(loaded.mesh.vertices);
     const double scale = choose_scale(loaded.mesh, loaded.metres_per_unit, settings, choices);
     for (Vec3& v : loaded.mesh.vertices) v *= scale;
     const MeshCheck c = check_mesh(loaded.mesh);
@@ -45,6 +47,7 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     j["components"] = c.components;
     j["self_intersections"] = c.self_intersections;
     j["metres_per_unit_in_file"] = loaded.metres_per_unit > 0 ? nlohmann::ordered_json(loaded.metres_per_unit) : nullptr;
+    j["up"] = turned ? "z" : "y";
     j["scale_m_per_unit"] = scale;
     j["size_m"] = {extent.x(), extent.y(), extent.z()};
     j["volume_m3"] = c.volume;
@@ -58,8 +61,11 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
             ? fmt::format("{:.4g} m long, by the file's units ({:g} m per unit)", extent.maxCoeff(), scale)
             : fmt::format("{:.4g} m long: the file has no units, and shatter run makes it that long ({:.6g} m per "
                           "unit; --size or --scale sets another)", extent.maxCoeff(), scale);
-    *text = fmt::format("kind          mesh\nmesh          {}\nsize          {}\nmeshing       {}\nappearance    {}\n",
+    *text = fmt::format("kind          mesh\nmesh          {}\nsize          {}\nup            {}\nmeshing       {}\n"
+                        "appearance    {}\n",
                         describe(c), size,
+                        turned ? "the file's +z, turned to +y (an STL file; [mesh] up = \"y\" keeps its axes)"
+                               : "the file's +y ([mesh] up = \"z\" turns a z-up file to stand)",
                         as_is ? "as it is (Mesh_3 fills it with tets)" : "alpha-wrapped first: " + why,
                         loaded.plain ? "its shape only (drawn in the material colour)"
                                      : "materials, textures or vertex colours (drawn on the pieces' outer faces)");

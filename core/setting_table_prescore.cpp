@@ -93,6 +93,13 @@ SettingsSection mesh_section() {
              number("wrap_offset", "fraction of diagonal", at(&Shot::mesh, &MeshSettings::wrap_offset),
                     kWrapOffsetLimits, "alpha-wrap offset from the input")
                  .flag("--wrap-offset"),
+             choice<UpAxis>("up", at(&Shot::mesh, &MeshSettings::up),
+                            {{"auto", UpAxis::Auto}, {"y", UpAxis::Y}, {"z", UpAxis::Z}},
+                            "which way is up in the file (shatter's world is y-up; a z-up file is turned to stand "
+                            "up): auto: z for STL (CAD and 3D printing), y for every other format",
+                            "an up axis", "use \"auto\", \"y\" or \"z\"")
+                 .json_unless_default()
+                 .flag("--up"),
              boolean("adapt", at(&Shot::mesh, &MeshSettings::adapt),
                      "raise the resolution, thicken thin walls, join slivers to their pieces, give each separate body "
                      "a piece (false: refuse such meshes)")

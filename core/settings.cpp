@@ -1,7 +1,9 @@
 #include "core/settings.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -27,6 +29,22 @@ std::optional<Length> Length::parse(const std::string& text) {
     if (unit == "cm") return Length{v * 1e-2, false};
     if (unit == "mm") return Length{v * 1e-3, false};
     return std::nullopt;
+}
+
+const char* to_string(UpAxis up) {
+    switch (up) {
+        case UpAxis::Auto: return "auto";
+        case UpAxis::Y: return "y";
+        case UpAxis::Z: return "z";
+    }
+    return "?";
+}
+
+bool z_up(UpAxis up, const std::string& path) {
+    if (up != UpAxis::Auto) return up == UpAxis::Z;
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".stl";
 }
 
 const char* to_string(RepairMode mode) {

@@ -34,6 +34,13 @@ struct Length {
 enum class RepairMode { Auto, Always, Never };
 const char* to_string(RepairMode mode);
 
+// Which way is up in the mesh file. shatter's world is y-up; a z-up file is turned by -90 degrees
+// about x ((x, y, z) -> (x, z, -y): +z becomes +y). Auto: z for STL (CAD's and 3D printing's
+// convention, as Blender also writes it), y for everything else (glTF's rule, most OBJ and PLY;
+// assimp turns 3DS, Collada and FBX files to y-up as it reads them).
+enum class UpAxis { Auto, Y, Z };
+const char* to_string(UpAxis up);
+
 // How big the object is: `size` (its longest bounding-box side) wins over `scale`; with neither,
 // the file's own units (glTF: metres; FBX, Collada: their unit scale), and for a file without
 // units (OBJ, STL, PLY, OFF, ...) the object is made kDefaultSize long.
@@ -45,7 +52,10 @@ struct MeshSettings {
     double wrap_alpha = 0.02;            // alpha-wrap ball radius, fraction of the diagonal
     double wrap_offset = 0.001;          // alpha-wrap offset, fraction of the diagonal
     bool adapt = true;                   // raise the resolution, thicken thin walls, merge slivers (false: refuse)
+    UpAxis up = UpAxis::Auto;            // the file's up axis
 };
+// Whether the file at `path` is read as z-up with `up` (Auto: an .stl file).
+bool z_up(UpAxis up, const std::string& path);
 inline constexpr double kDefaultSize = 0.3;  // (unit: m) a unitless mesh's longest side
 inline constexpr Limits kScaleLimits{1e-9, 1e9, "m per mesh unit"};
 inline constexpr Limits kSizeLimits{1e-6, 1e6, "m"};

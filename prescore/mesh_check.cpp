@@ -207,6 +207,10 @@ bool is_sheet(const MeshCheck& c, std::string* why) {
 
 size_t max_self_intersections(const MeshCheck& c) { return std::max<size_t>(8, c.triangles / 100); }
 
+void stand_up(std::vector<Vec3>& points) {
+    for (Vec3& v : points) v = Vec3(v.x(), v.z(), -v.y());
+}
+
 bool meshes_as_it_is(const MeshCheck& input, const MeshCheck& oriented, bool count_crossings, std::string* why) {
     std::string reason;
     bool usable = !is_sheet(input, &reason) && can_tetrahedralize(oriented, &reason);

@@ -68,6 +68,10 @@ std::string describe(const MeshCheck& check);
 // flipped them.
 bool orient_outward(TriangleMesh& mesh);
 
+// A z-up file's points turned to shatter's y-up world ([mesh] up): (x, y, z) -> (x, z, -y), -90
+// degrees about x, exactly (no rounding).
+void stand_up(std::vector<Vec3>& points);
+
 // True when Mesh_3 can fill the mesh with tets: closed, manifold, oriented, volume > 0 and no
 // degenerate triangles. Otherwise false, and *why (if not null) says what is wrong and what to
 // do (usually: repair with alpha_wrap). Self-intersections alone do not block: Mesh_3's

@@ -294,7 +294,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
 // The input's materials, textures, texture coordinates and colours on the render surfaces
 // (prescore/appearance_transfer.h), when it has any beyond its shape. Never fatal: a file whose
 // appearance cannot be read is drawn in the material colour, with a warning.
-void add_appearance(Model& model, const std::string& path, double scale, AutoChoices& choices) {
+void add_appearance(Model& model, const std::string& path, double scale, bool turn_up, AutoChoices& choices) {
     Appearance look;
     try {
         look = load_appearance(path);
@@ -304,6 +304,7 @@ void add_appearance(Model& model, const std::string& path, double scale, AutoCho
     }
     for (const std::string& w : look.warnings) choices.warn("appearance: " + w);
     if (look.plain()) return;
+    if (turn_up) stand_up(look.mesh.vertices);
     for (Vec3& v : look.mesh.vertices) {
         v *= scale;
         if (!v.allFinite()) {  // load_mesh refuses such a file; a second reading must not differ
@@ -353,6 +354,16 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         const double given = mesh_settings.scale ? *mesh_settings.scale
                                                  : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
         refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, mesh_settings.path);
+    }
+    const bool turn_up = z_up(mesh_settings.up, mesh_settings.path);
+    if (turn_up) {
+        stand_up(loaded.mesh.vertices);
+        const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
+        if (mesh_settings.up == UpAxis::Auto)
+            choices.note(what, "an STL file: CAD and 3D printing make z up; [mesh] up = \"y\" keeps the file's "
+                               "axes");
+        else
+            spdlog::info("{} ([mesh] up = \"z\")", what);
     }
     report.scale = choose_scale(loaded.mesh, loaded.metres_per_unit, mesh_settings, choices);
     for (Vec3& v : loaded.mesh.vertices) v *= report.scale;
@@ -409,7 +420,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).
         if (report.render_surfaces > 0 && !loaded.plain) {
-            add_appearance(model, mesh_settings.path, report.scale, choices);
+            add_appearance(model, mesh_settings.path, report.scale, turn_up, choices);
             timer.lap("appearance");
         }
     }

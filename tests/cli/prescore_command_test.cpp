@@ -4,6 +4,7 @@
 
 #include <set>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/model_io.h"
@@ -132,6 +133,47 @@ TEST(InfoCommand, AMeshIsDescribedAsShatterRunTakesIt) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("size          743.4 m long, by the file's units (1 m per unit)"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("warning       "), std::string::npos) << r.out;
+}
+
+// An STL file is read z-up and stood up: a box 1 unit tall along the file's z is tall along y, and
+// prescore says why; up = "y" keeps the file's axes. (A box of 0.2 x 0.4 x 1 units as 12 facets.)
+TEST(PrescoreCommand, AnStlFileStandsUpAndUpYKeepsItsAxes) {
+    TempDir dir;
+    const double x = 0.2, y = 0.4, z = 1.0;
+    const double c[8][3] = {{0, 0, 0}, {x, 0, 0}, {x, y, 0}, {0, y, 0}, {0, 0, z}, {x, 0, z}, {x, y, z}, {0, y, z}};
+    const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                          {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    std::string stl = "solid box\n";
+    for (const auto& t : f) {
+        stl += "facet normal 0 0 0\nouter loop\n";
+        for (int k : t) stl += fmt::format("vertex {} {} {}\n", c[k][0], c[k][1], c[k][2]);
+        stl += "endloop\nendfacet\n";
+    }
+    const std::string path = dir.write("box.stl", stl + "endsolid box\n");
+    auto r = run_shatter({"info", path, "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["up"], "z");
+    // 0.3 m long (the default size) along y; the file's y (0.4 units) now along -z.
+    // (assimp holds coordinates in single precision: 0.4 units to ~3e-8 of themselves)
+    EXPECT_NEAR(j["size_m"][1].get<double>(), 0.3, 1e-7);
+    EXPECT_NEAR(j["size_m"][2].get<double>(), 0.3 * 0.4, 1e-7);
+    r = run_shatter({"prescore", path, "--pieces", "2", "--resolution", "6", "-o", dir.file("up.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("auto: up: the file's +z turned to +y"), std::string::npos) << r.err;
+    const auto extent = [](const Model& m) {
+        Vec3 lo = Vec3::Constant(1e9), hi = -lo;
+        for (const Vec3& v : m.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        return Vec3(hi - lo);
+    };
+    const Vec3 up = extent(load_model(dir.file("up.model")));
+    EXPECT_NEAR(up.y(), 0.3, 1e-7) << up.transpose();
+    EXPECT_NEAR(up.z(), 0.12, 1e-7) << up.transpose();
+    r = run_shatter({"prescore", path, "--pieces", "2", "--resolution", "6", "--up", "y", "-o", dir.file("y.model")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Vec3 kept = extent(load_model(dir.file("y.model")));
+    EXPECT_NEAR(kept.z(), 0.3, 1e-7) << kept.transpose();
+    EXPECT_NEAR(kept.y(), 0.12, 1e-7) << kept.transpose();
 }
 
 // One bad input: the exit code, a message naming `expect`, and no file left in the output folder.
