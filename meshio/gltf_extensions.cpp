@@ -23,7 +23,8 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-constexpr uint64_t kMaxFileBytes = 2ull << 30;  // what a GLB's 32-bit length allows
+constexpr uint64_t kMaxFileBytes = 2ull << 30;     // what a GLB's 32-bit length allows
+constexpr uint64_t kMaxDecodedBytes = 1ull << 31;  // one decoded buffer view at most
 constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 constexpr int kFloat = 5126;
 const char* const kFix = "or write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
@@ -64,6 +65,9 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     GltfFile f;
     const std::string ext = lower_extension(path);
     if (ext != ".glb" && ext != ".gltf") return f;
+    std::error_code ec;
+    const uint64_t file_bytes = fs::file_size(path, ec);
+    if (ec) return f;
     std::ifstream in(path, std::ios::binary);
     std::string header(20, '\0');
     in.read(header.data(), 20);
@@ -71,14 +75,15 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     std::string text;
     if (header.size() == 20 && header.compare(0, 4, "glTF") == 0) {
         const uint32_t length = le32(header, 12);
-        if (le32(header, 16) != kJsonChunk || length > kMaxFileBytes) return f;
+        // Chunk lengths are taken only as far as the file reaches.
+        if (le32(header, 16) != kJsonChunk || length > file_bytes - 20) return f;
         text.assign(length, '\0');
         in.read(text.data(), std::streamsize(length));
         text.resize(size_t(in.gcount()));
         if (with_bin) {
             std::string chunk(8, '\0');
             in.read(chunk.data(), 8);
-            if (in.gcount() == 8 && le32(chunk, 4) == kBinChunk && le32(chunk, 0) <= kMaxFileBytes) {
+            if (in.gcount() == 8 && le32(chunk, 4) == kBinChunk && le32(chunk, 0) <= file_bytes - 28 - length) {
                 f.bin.assign(le32(chunk, 0), '\0');
                 in.read(f.bin.data(), std::streamsize(f.bin.size()));
                 f.bin.resize(size_t(in.gcount()));
@@ -203,8 +208,12 @@ private:
                              required(*ext, "byteLength", what), what, &source);
                 const uint64_t count = required(*ext, "count", what), stride = required(*ext, "byteStride", what);
                 const std::string mode = ext->value("mode", std::string()), filter = ext->value("filter", std::string("NONE"));
-                if (stride == 0 || stride > 256 || count > (uint64_t(1) << 31) / stride)
-                    fail(fmt::format("{} has {} elements of {} bytes", what, count, stride));
+                // meshoptimizer's codecs shrink data at most 64-fold (an all-zero attribute: 2 bits per
+                // 16 bytes): a view that claims more than 128 times its compressed bytes is not one.
+                if (stride == 0 || stride > 256 || count > kMaxDecodedBytes / stride ||
+                    count * stride > 128 * uint64_t(source.size()) + 4096)
+                    fail(fmt::format("{} claims {} elements of {} bytes from {} compressed bytes", what, count, stride,
+                                     source.size()));
                 data.assign(size_t(count * stride), '\0');
                 const auto* src = reinterpret_cast<const unsigned char*>(source.data());
                 int status = -1;
