@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "meshio/mesh_load.h"
 
 namespace shatter {
 
@@ -29,12 +30,6 @@ constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 constexpr int kFloat = 5126;
 const char* const kFix = "or write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
                          "gltfpack), then give shatter plain.glb";
-
-std::string lower_extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 std::string read_bytes(const std::string& path, uint64_t limit) {
     std::error_code ec;

@@ -186,11 +186,6 @@ void check_scale(const std::string& path, double scale) {
     }
 }
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 // Whether an executable named blender is on PATH.
 bool blender_on_path() {
@@ -406,6 +401,12 @@ LoadedMesh load_mesh_file(const std::string& path) {
         spdlog::info("mesh: {} uses {} (as gltfpack writes it): decoded before it is read", path, ext);
 
     return import_isolated(path);
+}
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
 }
 
 std::string rounding_hint(const FloatRounding& r) {
