@@ -55,7 +55,8 @@ struct GltfFile {
     bool ok = false;
 };
 
-// The JSON chunk alone unless `with_bin` (a large file that needs no decoding is not read whole).
+// The JSON chunk alone unless `with_bin` (a large file that needs no decoding is not read whole);
+// not ok for a file that names neither extension.
 GltfFile read_gltf(const std::string& path, bool with_bin) {
     GltfFile f;
     const std::string ext = lower_extension(path);
@@ -87,6 +88,10 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     } else {
         text = read_bytes(path, kMaxFileBytes);
     }
+    // Most files name neither extension: they are not parsed here (a .gltf with its buffers inlined
+    // can be tens of MB, and is read for the mesh and again for its appearance).
+    if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos)
+        return f;
     f.doc = json::parse(text, nullptr, false);
     f.ok = !f.doc.is_discarded() && f.doc.is_object();
     return f;
