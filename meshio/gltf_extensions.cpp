@@ -456,7 +456,12 @@ std::string unreadable_gltf_extension(const std::string& path) {
 std::optional<std::string> plain_glb(const std::string& path) {
     if (unreadable_gltf_extension(path).empty()) return std::nullopt;
     GltfFile f = read_gltf(path, true);
-    return Decoder(path, f).glb();
+    try {
+        return Decoder(path, f).glb();
+    } catch (const json::exception& e) {  // a value of another type than glTF gives it (a string count, ...)
+        throw_input_error(path, fmt::format("its glTF JSON has a value of the wrong type ({})", e.what()),
+                          std::string("check that the file is complete, ") + kFix);
+    }
 }
 
 }  // namespace shatter
