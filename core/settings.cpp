@@ -1,9 +1,7 @@
 #include "core/settings.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -38,13 +36,6 @@ const char* to_string(UpAxis up) {
         case UpAxis::Z: return "z";
     }
     return "?";
-}
-
-bool z_up(UpAxis up, const std::string& path) {
-    if (up != UpAxis::Auto) return up == UpAxis::Z;
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".stl";
 }
 
 const char* to_string(RepairMode mode) {

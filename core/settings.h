@@ -54,8 +54,6 @@ struct MeshSettings {
     bool adapt = true;                   // raise the resolution, thicken thin walls, merge slivers (false: refuse)
     UpAxis up = UpAxis::Auto;            // the file's up axis
 };
-// Whether the file at `path` is read as z-up with `up` (Auto: an .stl file).
-bool z_up(UpAxis up, const std::string& path);
 inline constexpr double kDefaultSize = 0.3;  // (unit: m) a unitless mesh's longest side
 inline constexpr Limits kScaleLimits{1e-9, 1e9, "m per mesh unit"};
 inline constexpr Limits kSizeLimits{1e-6, 1e6, "m"};

@@ -16,12 +16,11 @@
 #include <sstream>
 #include <unordered_map>
 
-#include <unistd.h>
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "core/find_program.h"
 #include "core/isolated.h"
 #include "meshio/gltf_extensions.h"
 #include "meshio/ply_header.h"
@@ -187,19 +186,6 @@ void check_scale(const std::string& path, double scale) {
 }
 
 
-// Whether an executable named blender is on PATH.
-bool blender_on_path() {
-    const char* env = std::getenv("PATH");
-    std::string dirs = env ? env : "";
-    for (size_t start = 0; start <= dirs.size();) {
-        const size_t colon = std::min(dirs.find(':', start), dirs.size());
-        const fs::path candidate = fs::path(dirs.substr(start, colon - start)) / "blender";
-        if (colon > start && ::access(candidate.c_str(), X_OK) == 0) return true;
-        start = colon + 1;
-    }
-    return false;
-}
-
 // What to do about a file assimp cannot read. Blender's own files are read only as Blender 2.4 to
 // 2.7x saved them (their header: "BLENDER", a pointer size, an endianness, three version digits);
 // a newer one, or one saved compressed by Blender 3 and later (zstd), is exported from Blender.
@@ -212,7 +198,7 @@ std::string format_fix(const std::string& path) {
     std::string export_it = "in Blender, File > Export > glTF 2.0 (.glb) or Wavefront (.obj), and give shatter that file";
     // With Blender installed, the command that does it (for a name the quotes below can hold).
     const fs::path glb = fs::path(path).replace_extension(".glb");
-    if (blender_on_path() && path.find_first_of("'\"\\\n") == std::string::npos)
+    if (find_program("blender") && path.find_first_of("'\"\\\n") == std::string::npos)
         export_it += fmt::format("; here: blender -b '{}' --python-expr \"import bpy; "
                                  "bpy.ops.export_scene.gltf(filepath='{}')\"",
                                  path, glb.string());
@@ -407,6 +393,11 @@ std::string lower_extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
+}
+
+bool z_up(UpAxis up, const std::string& path) {
+    if (up != UpAxis::Auto) return up == UpAxis::Z;
+    return lower_extension(path) == ".stl";
 }
 
 std::string rounding_hint(const FloatRounding& r) {

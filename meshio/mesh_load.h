@@ -25,6 +25,7 @@
 #include <string>
 
 #include "core/geometry.h"
+#include "core/settings.h"
 
 namespace shatter {
 
@@ -77,5 +78,8 @@ std::string read_file_head(const std::string& path, size_t bytes);
 
 // The file name's extension in lower case, with its dot (".glb"); "" without one.
 std::string lower_extension(const std::string& path);
+
+// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl file).
+bool z_up(UpAxis up, const std::string& path);
 
 }  // namespace shatter

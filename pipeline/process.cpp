@@ -34,11 +34,6 @@ namespace shatter {
 
 namespace {
 
-bool is_executable_file(const std::string& path) {
-    struct stat st {};
-    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
-}
-
 void close_fd(int& fd) {
     if (fd >= 0) ::close(fd);
     fd = -1;
@@ -122,25 +117,6 @@ std::string own_executable() {
     const std::filesystem::path p = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (ec) throw Error(ExitCode::Internal, "cannot find the shatter executable (/proc/self/exe)");
     return p.string();
-}
-
-std::optional<std::string> find_program(const std::string& name) {
-    if (name.empty()) return std::nullopt;
-    if (name.find('/') != std::string::npos)
-        return is_executable_file(name) ? std::optional<std::string>(name) : std::nullopt;
-    const char* path_env = std::getenv("PATH");
-    const std::string path = path_env ? path_env : "/usr/local/bin:/usr/bin:/bin";
-    size_t begin = 0;
-    while (begin <= path.size()) {
-        size_t end = path.find(':', begin);
-        if (end == std::string::npos) end = path.size();
-        std::string dir = path.substr(begin, end - begin);
-        if (dir.empty()) dir = ".";
-        const std::string candidate = dir + "/" + name;
-        if (is_executable_file(candidate)) return candidate;
-        begin = end + 1;
-    }
-    return std::nullopt;
 }
 
 std::string command_line(const std::vector<std::string>& argv) {

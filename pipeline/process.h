@@ -8,11 +8,9 @@
 #include <utility>
 #include <vector>
 
-namespace shatter {
+#include "core/find_program.h"  // find_program, with the processes it starts
 
-// The full path of `name` searched on PATH (or `name` itself when it contains a '/' and is
-// executable); nullopt when not found.
-std::optional<std::string> find_program(const std::string& name);
+namespace shatter {
 
 // The path of the running `shatter` (/proc/self/exe), for starting more of it: batch workers,
 // cluster jobs.
