@@ -10,10 +10,9 @@
 #include "core/stage_file.h"
 #include "core/trajectory.h"
 #include "core/trajectory_summary.h"
-#include "meshio/mesh_load.h"
-#include "prescore/adapt.h"
 #include "prescore/mesh_check.h"
 #include "prescore/model_summary.h"
+#include "prescore/prescore.h"
 
 namespace shatter {
 
@@ -23,14 +22,13 @@ namespace {
 // check in metres, whether prescore meshes it as it is or wraps it first, and whether it shows
 // anything beyond its shape.
 nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) {
-    LoadedMesh loaded = load_mesh_file(path);
     MeshSettings settings;
     settings.path = path;
     AutoChoices choices;
-    const bool turned = z_up(settings.up, path);
-    if (turned) stand_up(loaded.mesh.vertices);
-    const double scale = choose_scale(loaded.mesh, loaded.metres_per_unit, settings, choices);
-    for (Vec3& v : loaded.mesh.vertices) v *= scale;
+    const InputMesh input = read_input_mesh(settings, choices);
+    const LoadedMesh& loaded = input.loaded;
+    const bool turned = input.turned;
+    const double scale = input.scale;
     const MeshCheck c = check_mesh(loaded.mesh);
     MeshCheck oriented = c;
     if (c.closed() && c.volume < 0) oriented.volume = -c.volume;
@@ -57,7 +55,7 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     j["shows_only_its_shape"] = loaded.plain;
     j["warnings"] = choices.warnings;
     const std::string size =
-        choices.list.empty()
+        loaded.metres_per_unit > 0
             ? fmt::format("{:.4g} m long, by the file's units ({:g} m per unit)", extent.maxCoeff(), scale)
             : fmt::format("{:.4g} m long: the file has no units, and shatter run makes it that long ({:.6g} m per "
                           "unit; --size or --scale sets another)", extent.maxCoeff(), scale);

@@ -322,6 +322,34 @@ void add_appearance(Model& model, const std::string& path, double scale, bool tu
 
 }  // namespace
 
+InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
+    InputMesh in;
+    in.loaded = load_mesh_file(settings.path);
+    LoadedMesh& loaded = in.loaded;
+    if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
+        choices.warn(fmt::format("{}: {}", settings.path, hint));
+    if (!settings.size) {
+        // Numbers this far from a metre lose precision whatever the size asked for: check them
+        // in the units given (or the file's) before any automatic size.
+        const double given = settings.scale ? *settings.scale
+                                            : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
+        refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, settings.path);
+    }
+    in.turned = z_up(settings.up, settings.path);
+    if (in.turned) {
+        stand_up(loaded.mesh.vertices);
+        const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
+        if (settings.up == UpAxis::Auto)
+            choices.note(what, "an STL file: CAD and 3D printing make z up; [mesh] up = \"y\" keeps the file's "
+                               "axes");
+        else
+            spdlog::info("{} ([mesh] up = \"z\")", what);
+    }
+    in.scale = choose_scale(loaded.mesh, loaded.metres_per_unit, settings, choices);
+    for (Vec3& v : loaded.mesh.vertices) v *= in.scale;
+    return in;
+}
+
 Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out) {
     PrescoreReport local;
     PrescoreReport& report = report_out ? *report_out : local;
@@ -342,31 +370,12 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     // each): say what is happening before it.
     const bool large = mesh_file_bytes > kLargeMeshFileBytes;
     if (large) spdlog::info("mesh: reading {} ({:.0f} MB)", mesh_settings.path, double(mesh_file_bytes) / 1e6);
-    LoadedMesh loaded = load_mesh_file(mesh_settings.path);
+    InputMesh read = read_input_mesh(mesh_settings, choices);
+    LoadedMesh& loaded = read.loaded;
     if (large)
         spdlog::info("mesh: {} triangles read; checking them (closed, manifold, oriented, crossing)",
                      loaded.mesh.triangles.size());
-    if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
-        choices.warn(fmt::format("{}: {}", mesh_settings.path, hint));
-    if (!mesh_settings.size) {
-        // Numbers this far from a metre lose precision whatever the size asked for: check them
-        // in the units given (or the file's) before any automatic size.
-        const double given = mesh_settings.scale ? *mesh_settings.scale
-                                                 : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
-        refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, mesh_settings.path);
-    }
-    const bool turn_up = z_up(mesh_settings.up, mesh_settings.path);
-    if (turn_up) {
-        stand_up(loaded.mesh.vertices);
-        const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
-        if (mesh_settings.up == UpAxis::Auto)
-            choices.note(what, "an STL file: CAD and 3D printing make z up; [mesh] up = \"y\" keeps the file's "
-                               "axes");
-        else
-            spdlog::info("{} ([mesh] up = \"z\")", what);
-    }
-    report.scale = choose_scale(loaded.mesh, loaded.metres_per_unit, mesh_settings, choices);
-    for (Vec3& v : loaded.mesh.vertices) v *= report.scale;
+    report.scale = read.scale;
     timer.lap("load");
     const TriangleMesh& input = loaded.mesh;
     TriangleMesh surface = prepare_surface(input, mesh_settings, report);
@@ -420,7 +429,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).
         if (report.render_surfaces > 0 && !loaded.plain) {
-            add_appearance(model, mesh_settings.path, report.scale, turn_up, choices);
+            add_appearance(model, mesh_settings.path, report.scale, read.turned, choices);
             timer.lap("appearance");
         }
     }

@@ -17,6 +17,7 @@
 #include "core/model.h"
 #include "core/settings.h"
 #include "core/shot.h"
+#include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
 #include "prescore/mesh_check.h"
 
@@ -39,6 +40,17 @@ struct PrescoreReport {
     size_t render_triangles = 0;     // triangles of every render surface
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
+
+// The object's mesh as prescore takes it, before any check: read (meshio/mesh_load.h), its
+// coordinates' rounding warned and a size out of reach refused, turned to stand when the file is
+// z-up ([mesh] up; noted in `choices`), and sized to metres (choose_scale). `shatter info MESH`
+// describes the same mesh.
+struct InputMesh {
+    LoadedMesh loaded;  // its coordinates in metres
+    double scale = 1;   // metres per file unit
+    bool turned = false;  // read z-up and stood up
+};
+InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices);
 
 // Runs every phase; throws Error for bad input (unreadable mesh, mesh that cannot be
 // tetrahedralized and may not be repaired, more pieces than tets, ...).
