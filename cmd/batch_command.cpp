@@ -37,11 +37,6 @@ bool one_batch_file(const std::vector<std::string>& inputs) {
 
 int run(const BatchFlags& f) {
     const bool file = one_batch_file(f.inputs);
-    if (!file)
-        for (const std::string& input : f.inputs)
-            if (is_batch_file(input))
-                throw Error(ExitCode::Usage, fmt::format("{} is a batch file, given with other files (fix: give one "
-                                                         "batch file, or shots and meshes)", input));
     const BatchFile batch =
         file ? load_batch(f.inputs.front(), f.output, f.overrides) : batch_of_files(f.inputs, f.output, f.overrides);
     // A bad --set would fail every run: it is refused before any starts, read against the first

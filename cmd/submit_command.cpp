@@ -31,10 +31,6 @@ int run(SubmitFlags& f) {
     // One shot or mesh; one batch file; or several shots and meshes, a batch of them.
     const bool batch_file = f.inputs.size() == 1 && is_batch_file(f.inputs.front());
     if (batch_file || f.inputs.size() > 1) {
-        for (const std::string& input : f.inputs)
-            if (f.inputs.size() > 1 && is_batch_file(input))
-                throw Error(ExitCode::Usage, fmt::format("{} is a batch file, given with other files (fix: give one "
-                                                         "batch file, or shots and meshes)", input));
         if (!f.cache.empty())
             throw Error(ExitCode::Usage, "--cache: a batch shares OUTPUT/.cache already (fix: leave --cache out)");
         runs = submit_batch(batch_file ? load_batch(f.inputs.front(), f.output, f.overrides)

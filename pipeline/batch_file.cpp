@@ -161,10 +161,13 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir, con
 BatchFile batch_of_files(const std::vector<std::string>& files, const std::string& output_dir,
                          const std::vector<std::string>& overrides) {
     BatchFile batch;
-    batch.files = files;
     batch.overrides = overrides;
     batch.output_dir = output_dir.empty() ? (fs::path("out") / "batch").string() : output_dir;
     std::set<std::string> names;
+    for (const std::string& file : files)
+        if (is_batch_file(file))
+            throw Error(ExitCode::Usage, fmt::format("{} is a batch file, given with other files (fix: give one batch "
+                                                     "file, or shots and meshes)", file));
     for (const std::string& file : files) {
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))

@@ -42,7 +42,6 @@ struct BatchJob {
 
 struct BatchFile {
     std::string path;                     // the batch file; "" for files given by name (batch_of_files)
-    std::vector<std::string> files;       // those files, as given
     std::vector<std::string> overrides;   // --set: in every run (load_batch, batch_of_files)
     std::string output_dir;
     uint32_t workers = 2;
@@ -61,7 +60,8 @@ BatchFile load_batch(const std::string& path, const std::string& output_dir = ""
 // A batch of shots and mesh files given by name (`shatter batch a.obj b.stl c.toml`): one job
 // and one run each, named by the file (a second file of the same name gets its extension, then a
 // number: "horse", "horse-stl", "horse-stl-2"), every run with `overrides`, into `output_dir`
-// (default out/batch). A file that is not there is Error(BadInput) before anything runs.
+// (default out/batch). A file that is not there is Error(BadInput), a batch file among them
+// Error(Usage), before anything runs.
 BatchFile batch_of_files(const std::vector<std::string>& files, const std::string& output_dir = "",
                          const std::vector<std::string>& overrides = {});
 

@@ -261,7 +261,7 @@ std::vector<RunSubmission> submit_batch(const BatchFile& batch, const SubmitOpti
     req.script = (fs::path(slurm_dir) / "job.sh").string();
     req.args = {options.shatter.empty() ? own_executable() : absolute(options.shatter), "batch"};
     if (batch.path.empty())
-        for (const std::string& f : batch.files) req.args.push_back(absolute(f));
+        for (const BatchJob& job : batch.jobs) req.args.push_back(absolute(job.shot));  // the files, in order
     else
         req.args.push_back(absolute(batch.path));
     for (const std::string& o : batch.overrides) req.args.insert(req.args.end(), {"--set", o});
