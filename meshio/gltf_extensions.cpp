@@ -88,9 +88,10 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     } else {
         text = read_bytes(path, kMaxFileBytes);
     }
-    // Most files name neither extension: they are not parsed here (a .gltf with its buffers inlined
-    // can be tens of MB, and is read for the mesh and again for its appearance).
-    if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos)
+    // Most files name none of the extensions decoded here: they are not parsed (a .gltf with its
+    // buffers inlined can be tens of MB, and is read for the mesh and again for its appearance).
+    if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos &&
+        text.find("KHR_texture_transform") == std::string::npos)
         return f;
     f.doc = json::parse(text, nullptr, false);
     f.ok = !f.doc.is_discarded() && f.doc.is_object();
@@ -103,6 +104,25 @@ std::string first_unreadable(const json& doc) {
         for (const auto& e : doc["extensionsRequired"])
             if (e.is_string() && e.get<std::string>() == name) return name;
     return "";
+}
+
+// A material's base colour texture transform (KHR_texture_transform), or nullptr.
+const json* base_colour_transform(const json& material) {
+    if (!material.is_object() || !material.contains("pbrMetallicRoughness")) return nullptr;
+    const json& pbr = material["pbrMetallicRoughness"];
+    if (!pbr.is_object() || !pbr.contains("baseColorTexture")) return nullptr;
+    const json& info = pbr["baseColorTexture"];
+    if (!info.is_object() || !info.contains("extensions") || !info["extensions"].is_object() ||
+        !info["extensions"].contains("KHR_texture_transform") || !info["extensions"]["KHR_texture_transform"].is_object())
+        return nullptr;
+    return &info["extensions"]["KHR_texture_transform"];
+}
+
+bool transforms_base_colour(const json& doc) {
+    if (!doc.contains("materials") || !doc["materials"].is_array()) return false;
+    for (const json& m : doc["materials"])
+        if (base_colour_transform(m)) return true;
+    return false;
 }
 
 // Decoding, with every index and range checked against what the file holds.
@@ -268,16 +288,18 @@ private:
                         for (const auto& t : p["targets"]) visit(t);
                 }
     }
-    void to_float(uint64_t index) {
+    // The accessor's values as tightly packed floats in a view of their own; a float accessor too
+    // when `copy` (a copy whose values are to change).
+    void to_float(uint64_t index, bool copy = false) {
         if (index >= array("accessors").size()) fail(fmt::format("attribute names accessor {}, which does not exist", index));
         json& a = doc_["accessors"][size_t(index)];
         const std::string what = fmt::format("accessor {}", index);
         const int type = a.value("componentType", 0);
-        if (type == kFloat) return;
+        if (type == kFloat && !copy) return;
         if (a.contains("sparse")) fail(what + " is sparse and quantized, which is not decoded here");
         const std::map<std::string, int> widths = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}};
         const auto w = widths.find(a.value("type", std::string()));
-        const int size = type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : type == 5125 ? 4 : 0;
+        const int size = type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : type == 5125 || type == kFloat ? 4 : 0;
         if (w == widths.end() || size == 0) fail(what + " has a type or component type glTF does not define");
         const int n = w->second;
         const uint64_t count = required(a, "count", what), view = required(a, "bufferView", what);
@@ -297,6 +319,7 @@ private:
                 case 5121: return normalized ? *p / 255.0f : float(*p);
                 case 5122: { int16_t c; std::memcpy(&c, p, 2); return normalized ? std::max(c / 32767.0f, -1.0f) : float(c); }
                 case 5123: { uint16_t c; std::memcpy(&c, p, 2); return normalized ? c / 65535.0f : float(c); }
+                case kFloat: { float c; std::memcpy(&c, p, 4); return c; }
                 default: { uint32_t c; std::memcpy(&c, p, 4); return normalized ? float(c / 4294967295.0) : float(c); }
             }
         };
@@ -326,69 +349,100 @@ private:
         a.erase("normalized");
     }
 
-    // Quantized texture coordinates come with a KHR_texture_transform on the material that scales
-    // them back; assimp 5.2 does not apply it as glTF defines it. It is applied here instead
-    // (uv' = T(offset) R(rotation) S(scale) uv, rotation [[cos, sin], [-sin, cos]]) to the
-    // coordinates the base colour texture reads, and taken off the material's textures that carry
-    // the same transform. A coordinate set two transforms would disagree on is left as it is.
+    // A KHR_texture_transform on the base colour texture (gltfpack's quantized coordinates come
+    // with one that scales them back; Blender writes one for a mapping node): assimp 5.2 does not
+    // apply it as glTF defines it. It is applied here instead, uv' = offset + R S uv with R =
+    // [[cos, sin], [-sin, cos]] (the direction the Khronos TextureTransformTest asset marks
+    // correct), to a float copy of the coordinates each of the material's primitives reads (the
+    // same coordinates may serve several materials), and taken off the material. A material with
+    // a primitive whose coordinates cannot be copied (sparse, or not VEC2) is left to assimp.
     void bake_texture_transforms() {
-        const json& materials = array("materials");
-        std::map<size_t, json> wanted;  // converted TEXCOORD accessor -> its transform
-        std::map<size_t, bool> clash;
-        for (const auto& mesh : array("meshes"))
-            if (mesh.contains("primitives") && mesh["primitives"].is_array())
-                for (const auto& p : mesh["primitives"]) {
-                    if (!p.contains("material") || !p["material"].is_number_unsigned() || !p.contains("attributes")) continue;
+        if (!doc_.contains("materials") || !doc_["materials"].is_array() || !doc_.contains("meshes") ||
+            !doc_["meshes"].is_array())
+            return;
+        json& materials = doc_["materials"];
+        // Each primitive whose material transforms its base colour texture, with the attribute it reads.
+        struct Use {
+            json* primitive;
+            size_t material;
+            std::string attribute;
+        };
+        std::vector<Use> uses;
+        std::vector<char> bakeable(materials.size(), 1), used(materials.size(), 0);
+        for (auto& mesh : doc_["meshes"])
+            if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+                for (auto& p : mesh["primitives"]) {
+                    if (!p.is_object() || !p.contains("material") || !p["material"].is_number_unsigned() ||
+                        !p.contains("attributes") || !p["attributes"].is_object())
+                        continue;
                     const size_t m = p["material"].get<size_t>();
                     if (m >= materials.size()) continue;
                     const json* t = base_colour_transform(materials[m]);
                     if (!t) continue;
-                    const json& info = materials[m]["pbrMetallicRoughness"]["baseColorTexture"];
-                    const int set = t->contains("texCoord") ? t->value("texCoord", 0) : info.value("texCoord", 0);
-                    const std::string name = "TEXCOORD_" + std::to_string(set);
-                    if (!p["attributes"].contains(name) || !p["attributes"][name].is_number_unsigned()) continue;
-                    const size_t a = p["attributes"][name].get<size_t>();
-                    if (!converted_.count(a)) continue;
-                    const auto [it, added] = wanted.emplace(a, *t);
-                    if (!added && it->second != *t) clash[a] = true;
+                    used[m] = 1;
+                    const std::string name = "TEXCOORD_" + std::to_string(coordinate_set(materials[m], *t));
+                    const json& attributes = p["attributes"];
+                    const json* a = attributes.contains(name) && attributes[name].is_number_unsigned() &&
+                                            attributes[name].get<uint64_t>() < array("accessors").size()
+                                        ? &doc_["accessors"][attributes[name].get<size_t>()]
+                                        : nullptr;
+                    if (!a || !a->is_object() || a->contains("sparse") || a->value("type", std::string()) != "VEC2")
+                        bakeable[m] = 0;
+                    else
+                        uses.push_back({&p, m, name});
                 }
-        std::vector<json> baked;
-        for (const auto& entry : wanted) {
-            const size_t a = entry.first;
-            const json& t = entry.second;  // (not a structured binding: the lambda below captures it)
-            if (clash.count(a)) continue;
-            const double r = t.value("rotation", 0.0), c = std::cos(r), sn = std::sin(r);
-            const auto pair = [&t](const char* key, double fallback) {
-                return t.contains(key) && t[key].is_array() && t[key].size() == 2 && t[key][0].is_number() && t[key][1].is_number()
-                           ? std::array<double, 2>{t[key][0].get<double>(), t[key][1].get<double>()}
-                           : std::array<double, 2>{fallback, fallback};
-            };
-            const std::array<double, 2> offset = pair("offset", 0), scale = pair("scale", 1);
-            std::string& data = views_[converted_[a]];
-            const json& acc = doc_["accessors"][a];
-            if (acc.value("type", std::string()) != "VEC2") continue;
-            auto* uv = reinterpret_cast<float*>(data.data());
-            for (size_t i = 0; i + 1 < data.size() / 4; i += 2) {
-                const double u = uv[i] * scale[0], v = uv[i + 1] * scale[1];
-                uv[i] = float(c * u + sn * v + offset[0]);
-                uv[i + 1] = float(-sn * u + c * v + offset[1]);
+        std::map<std::pair<size_t, size_t>, size_t> copies;  // (accessor, material) -> its baked copy
+        for (const Use& use : uses) {
+            if (!bakeable[use.material]) continue;
+            json& attribute = (*use.primitive)["attributes"][use.attribute];
+            const std::pair<size_t, size_t> key{attribute.get<size_t>(), use.material};
+            auto it = copies.find(key);
+            if (it == copies.end()) {
+                const size_t copy = float_copy(key.first);
+                transform_coordinates(views_[converted_[copy]], *base_colour_transform(materials[use.material]));
+                it = copies.emplace(key, copy).first;
             }
-            json& a_json = doc_["accessors"][a];
-            a_json.erase("min");
-            a_json.erase("max");
-            baked.push_back(t);
+            attribute = it->second;
         }
-        // The transforms now in the coordinates come off every texture that carries one of them.
-        if (baked.empty()) return;
-        for (auto& material : doc_["materials"]) strip_transforms(material, baked);
+        for (size_t m = 0; m < materials.size(); ++m) {
+            if (!used[m] || !bakeable[m]) continue;
+            json& info = materials[m]["pbrMetallicRoughness"]["baseColorTexture"];
+            const json t = info["extensions"]["KHR_texture_transform"];
+            info["texCoord"] = coordinate_set(materials[m], t);
+            strip_transforms(materials[m], {t});  // and off its other textures that carry the same one
+        }
     }
-    static const json* base_colour_transform(const json& material) {
-        if (!material.contains("pbrMetallicRoughness")) return nullptr;
-        const json& pbr = material["pbrMetallicRoughness"];
-        if (!pbr.contains("baseColorTexture")) return nullptr;
-        const json& info = pbr["baseColorTexture"];
-        if (!info.contains("extensions") || !info["extensions"].contains("KHR_texture_transform")) return nullptr;
-        return &info["extensions"]["KHR_texture_transform"];
+    // The coordinate set a material's base colour texture reads: the transform's texCoord, if any.
+    static int coordinate_set(const json& material, const json& transform) {
+        const json& info = material["pbrMetallicRoughness"]["baseColorTexture"];
+        const json& from = transform.contains("texCoord") ? transform["texCoord"] : info.contains("texCoord") ? info["texCoord"] : json(0);
+        return from.is_number_unsigned() && from.get<uint64_t>() < 64 ? from.get<int>() : 0;
+    }
+    // A new accessor with the same values as `a`, as floats in a view of their own.
+    size_t float_copy(size_t a) {
+        json copy = doc_["accessors"][a];
+        copy.erase("min");
+        copy.erase("max");
+        doc_["accessors"].push_back(std::move(copy));
+        const size_t c = doc_["accessors"].size() - 1;
+        to_float(c, true);
+        return c;
+    }
+    static void transform_coordinates(std::string& floats, const json& t) {
+        const double r = t.contains("rotation") && t["rotation"].is_number() ? t["rotation"].get<double>() : 0.0;
+        const double c = std::cos(r), sn = std::sin(r);
+        const auto pair = [&t](const char* key, double fallback) {
+            return t.contains(key) && t[key].is_array() && t[key].size() == 2 && t[key][0].is_number() && t[key][1].is_number()
+                       ? std::array<double, 2>{t[key][0].get<double>(), t[key][1].get<double>()}
+                       : std::array<double, 2>{fallback, fallback};
+        };
+        const std::array<double, 2> offset = pair("offset", 0), scale = pair("scale", 1);
+        auto* uv = reinterpret_cast<float*>(floats.data());
+        for (size_t i = 0; i + 1 < floats.size() / 4; i += 2) {
+            const double u = uv[i] * scale[0], v = uv[i + 1] * scale[1];
+            uv[i] = float(c * u + sn * v + offset[0]);
+            uv[i + 1] = float(-sn * u + c * v + offset[1]);
+        }
     }
     static void strip_transforms(json& node, const std::vector<json>& baked) {
         if (node.is_object()) {
@@ -454,13 +508,22 @@ std::string unreadable_gltf_extension(const std::string& path) {
 }
 
 std::optional<std::string> plain_glb(const std::string& path) {
-    if (unreadable_gltf_extension(path).empty()) return std::nullopt;
+    const GltfFile probe = read_gltf(path, false);
+    if (!probe.ok) return std::nullopt;
+    const bool unreadable = !first_unreadable(probe.doc).empty();
+    if (!unreadable && !transforms_base_colour(probe.doc)) return std::nullopt;
     GltfFile f = read_gltf(path, true);
     try {
         return Decoder(path, f).glb();
     } catch (const json::exception& e) {  // a value of another type than glTF gives it (a string count, ...)
+        if (!unreadable) return std::nullopt;
         throw_input_error(path, fmt::format("its glTF JSON has a value of the wrong type ({})", e.what()),
                           std::string("check that the file is complete, ") + kFix);
+    } catch (const Error&) {
+        // A file assimp reads by itself, only for its texture transform: the reader says what is
+        // wrong with it, if anything.
+        if (!unreadable) return std::nullopt;
+        throw;
     }
 }
 

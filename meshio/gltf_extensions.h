@@ -10,6 +10,11 @@
 // from memory: the same file otherwise (nodes, their transforms, materials, embedded images; a
 // .gltf's images keep their uri, which the appearance reader resolves beside the file). Draco
 // (KHR_draco_mesh_compression) needs none of this: Debian's assimp links libdraco.
+// A third extension assimp reads but gets wrong: KHR_texture_transform (an offset, rotation and
+// scale of the texture coordinates; gltfpack's quantized coordinates come with one, Blender
+// writes one for a mapping node). assimp 5.2 turns the coordinates the other way round (the
+// Khronos test asset's arrow points at its red marker) and shifts gltfpack's scaled ones; plain_glb
+// applies the transform to the coordinates instead, also in a file that needs nothing else.
 #pragma once
 
 #include <optional>
@@ -22,9 +27,11 @@ namespace shatter {
 // JSON does not parse: the reader says what is wrong with it).
 std::string unreadable_gltf_extension(const std::string& path);
 
-// The file as a plain GLB when unreadable_gltf_extension finds one, else nullopt. Throws
-// Error(BadInput) naming the file and what is out of bounds or not decodable, with the gltfpack
-// command that writes the file without them.
+// The file as a plain GLB when unreadable_gltf_extension finds one or a material's base colour
+// texture has a texture transform, else nullopt. Throws Error(BadInput) naming the file and what
+// is out of bounds or not decodable, with the gltfpack command that writes the file without
+// them; a file that needs decoding only for its texture transform and cannot be decoded is left
+// to assimp (nullopt), which reads it as before.
 std::optional<std::string> plain_glb(const std::string& path);
 
 }  // namespace shatter

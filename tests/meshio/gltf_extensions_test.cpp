@@ -71,7 +71,7 @@ TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
         }
         return std::make_pair(p, uv);
     };
-    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb"}) {
+    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb", "textured_cube.transformed.gltf"}) {
         const Appearance packed = load_appearance(kDir + name);
         ASSERT_EQ(packed.mesh.triangles.size(), 12u) << name;
         ASSERT_EQ(packed.uv.size(), packed.mesh.vertices.size()) << name;
@@ -91,6 +91,38 @@ TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
             EXPECT_LT(uv_error, 2e-3) << name << " triangle " << t << " reads another part of the texture";
         }
     }
+}
+
+// Khronos's TextureTransformTest (assimp-testmodels): its "Rotation" quad (1 m, centred at
+// (-1.1, -0.55), texture coordinates (0, 0) at its top-left corner to (1, 1)) reads Arrow.png, an
+// arrow along the texture's diagonal, through a rotation of 22.5 degrees, with three markers
+// around it. Seen from the quad's top-left corner the arrow points at the green one (at -67.5
+// degrees) when the rotation is applied as glTF defines it, at the yellow one (-45) when it is
+// not, and at the red one (-22.5) when it is applied the other way round.
+TEST(GltfExtensions, TheKhronosTextureTransformArrowPointsAtItsGreenMarker) {
+    const std::string path = "/usr/share/assimp/models/glTF2/textureTransform/TextureTransformTest.gltf";
+    const Appearance a = load_appearance(path);
+    ASSERT_EQ(a.uv.size(), a.mesh.vertices.size());
+    // The quad's corners, each with its texture coordinate (v turned back to glTF's, downwards).
+    const Vec3 centre(-1.1, -0.55, 0);
+    std::vector<std::pair<Vec3, std::array<double, 2>>> corners;
+    for (size_t v = 0; v < a.mesh.vertices.size(); ++v) {
+        const Vec3 d = a.mesh.vertices[v] - centre;
+        if (std::abs(d.z()) < 1e-6 && std::abs(std::abs(d.x()) - 0.5) < 1e-6 && std::abs(std::abs(d.y()) - 0.5) < 1e-6)
+            corners.push_back({d, {a.uv[v][0], 1.0 - a.uv[v][1]}});
+    }
+    ASSERT_GE(corners.size(), 3u);
+    // The affine map from the quad's (x, y) to its texture coordinates, from three corners.
+    Eigen::Matrix3d xy1, uv1;
+    for (int k = 0; k < 3; ++k) {
+        xy1.col(k) << corners[size_t(k)].first.x(), corners[size_t(k)].first.y(), 1;
+        uv1.col(k) << corners[size_t(k)].second[0], corners[size_t(k)].second[1], 1;
+    }
+    const Eigen::Matrix2d to_uv = (uv1 * xy1.inverse()).topLeftCorner<2, 2>();
+    // The quad's direction along which the texture's diagonal (1, 1) runs.
+    const Eigen::Vector2d along = to_uv.inverse() * Eigen::Vector2d(1, 1);
+    const double degrees = std::atan2(along.y(), along.x()) * 180 / M_PI;
+    EXPECT_NEAR(degrees, -67.5, 1.0) << "-45: the rotation was not applied; -22.5: it was applied the other way";
 }
 
 // A compressed buffer view cut short: refused with the file's name and gltfpack's fix.
