@@ -38,7 +38,7 @@ struct Appearance {
 // Throws shatter::Error(BadInput) as load_mesh does, for the same files.
 Appearance load_appearance(const std::string& path);
 
-// The MIME type of an encoded image by its first bytes ("image/png", "image/jpeg"), else by
+// The MIME type of an encoded image by its first bytes ("image/png", "image/jpeg", "image/webp"), else by
 // the file name's extension ("image/x-tga", "image/bmp", ...); "" when unknown.
 std::string image_mime(const std::string& bytes, const std::string& name);
 

@@ -91,7 +91,7 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     // Most files name none of the extensions decoded here: they are not parsed (a .gltf with its
     // buffers inlined can be tens of MB, and is read for the mesh and again for its appearance).
     if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos &&
-        text.find("KHR_texture_transform") == std::string::npos)
+        text.find("KHR_texture_transform") == std::string::npos && text.find("EXT_texture_webp") == std::string::npos)
         return f;
     f.doc = json::parse(text, nullptr, false);
     f.ok = !f.doc.is_discarded() && f.doc.is_object();
@@ -125,6 +125,22 @@ bool transforms_base_colour(const json& doc) {
     return false;
 }
 
+// A texture's WebP image (EXT_texture_webp), or nullptr.
+const json* webp_source(const json& texture) {
+    if (!texture.is_object() || !texture.contains("extensions") || !texture["extensions"].is_object() ||
+        !texture["extensions"].contains("EXT_texture_webp"))
+        return nullptr;
+    const json& ext = texture["extensions"]["EXT_texture_webp"];
+    return ext.is_object() && ext.contains("source") && ext["source"].is_number_unsigned() ? &ext["source"] : nullptr;
+}
+
+bool has_webp_textures(const json& doc) {
+    if (!doc.contains("textures") || !doc["textures"].is_array()) return false;
+    for (const json& t : doc["textures"])
+        if (webp_source(t)) return true;
+    return false;
+}
+
 // Decoding, with every index and range checked against what the file holds.
 class Decoder {
 public:
@@ -135,6 +151,7 @@ public:
         decode_views();
         dequantize_attributes();
         bake_texture_transforms();
+        use_webp_images();
         return write();
     }
 
@@ -444,6 +461,21 @@ private:
             uv[i + 1] = float(-sn * u + c * v + offset[1]);
         }
     }
+    // A texture with a WebP image (EXT_texture_webp: glTF-Transform's and gltfpack's WebP texture
+    // compression, often with no PNG or JPEG fallback) takes it as its source, which assimp reads
+    // and meshio/image_decode.h decodes; assimp 5.2 does not know the extension and left such a
+    // texture without an image.
+    void use_webp_images() {
+        if (!doc_.contains("textures") || !doc_["textures"].is_array()) return;
+        const size_t images = array("images").size();
+        for (json& t : doc_["textures"]) {
+            const json* source = webp_source(t);
+            if (!source || source->get<uint64_t>() >= images) continue;
+            t["source"] = *source;
+            t["extensions"].erase("EXT_texture_webp");
+            if (t["extensions"].empty()) t.erase("extensions");
+        }
+    }
     static void strip_transforms(json& node, const std::vector<json>& baked) {
         if (node.is_object()) {
             if (node.contains("index") && node.contains("extensions") && node["extensions"].is_object() &&
@@ -458,7 +490,7 @@ private:
         }
     }
 
-    // One binary chunk holding every view, 4-byte aligned; the two extensions no longer listed.
+    // One binary chunk holding every view, 4-byte aligned; the extensions decoded no longer listed.
     std::string write() {
         std::string bin;
         for (size_t i = 0; i < views_.size(); ++i) {
@@ -474,7 +506,9 @@ private:
             if (doc_.contains(list) && doc_[list].is_array()) {
                 json kept = json::array();
                 for (const auto& e : doc_[list])
-                    if (!(e.is_string() && (e == "EXT_meshopt_compression" || e == "KHR_mesh_quantization"))) kept.push_back(e);
+                    if (!(e.is_string() && (e == "EXT_meshopt_compression" || e == "KHR_mesh_quantization" ||
+                                            e == "EXT_texture_webp")))
+                        kept.push_back(e);
                 doc_[list] = kept;
             }
         std::string text = doc_.dump();
@@ -511,7 +545,7 @@ std::optional<std::string> plain_glb(const std::string& path) {
     const GltfFile probe = read_gltf(path, false);
     if (!probe.ok) return std::nullopt;
     const bool unreadable = !first_unreadable(probe.doc).empty();
-    if (!unreadable && !transforms_base_colour(probe.doc)) return std::nullopt;
+    if (!unreadable && !transforms_base_colour(probe.doc) && !has_webp_textures(probe.doc)) return std::nullopt;
     GltfFile f = read_gltf(path, true);
     try {
         return Decoder(path, f).glb();
@@ -520,8 +554,8 @@ std::optional<std::string> plain_glb(const std::string& path) {
         throw_input_error(path, fmt::format("its glTF JSON has a value of the wrong type ({})", e.what()),
                           std::string("check that the file is complete, ") + kFix);
     } catch (const Error&) {
-        // A file assimp reads by itself, only for its texture transform: the reader says what is
-        // wrong with it, if anything.
+        // A file assimp reads by itself, decoded only for its texture transforms or WebP images:
+        // the reader says what is wrong with it, if anything.
         if (!unreadable) return std::nullopt;
         throw;
     }

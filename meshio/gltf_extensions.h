@@ -15,6 +15,9 @@
 // writes one for a mapping node). assimp 5.2 turns the coordinates the other way round (the
 // Khronos test asset's arrow points at its red marker) and shifts gltfpack's scaled ones; plain_glb
 // applies the transform to the coordinates instead, also in a file that needs nothing else.
+// And one assimp 5.2 does not know: EXT_texture_webp (a texture's WebP image, often without a PNG
+// fallback; glTF-Transform's and gltfpack's WebP texture compression), which plain_glb makes the
+// texture's source (meshio/image_decode.h decodes WebP).
 #pragma once
 
 #include <optional>
@@ -27,10 +30,10 @@ namespace shatter {
 // JSON does not parse: the reader says what is wrong with it).
 std::string unreadable_gltf_extension(const std::string& path);
 
-// The file as a plain GLB when unreadable_gltf_extension finds one or a material's base colour
-// texture has a texture transform, else nullopt. Throws Error(BadInput) naming the file and what
+// The file as a plain GLB when unreadable_gltf_extension finds one, a material's base colour
+// texture has a texture transform or a texture a WebP image, else nullopt. Throws Error(BadInput) naming the file and what
 // is out of bounds or not decodable, with the gltfpack command that writes the file without
-// them; a file that needs decoding only for its texture transform and cannot be decoded is left
+// them; a file that needs decoding only for those textures and cannot be decoded is left
 // to assimp (nullopt), which reads it as before.
 std::optional<std::string> plain_glb(const std::string& path);
 

@@ -3,12 +3,42 @@
 #include <cmath>
 
 #include <stb/stb_image.h>
+#include <webp/decode.h>
 
 namespace shatter {
 
 namespace {
 
 float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+constexpr int kMaxImageSide = 16384;  // WebP's own limit is 16383
+
+// A WebP image (RIFF....WEBP), which stb_image does not read, by libwebp.
+bool is_webp(const std::string& bytes) {
+    return bytes.size() >= 12 && bytes.compare(0, 4, "RIFF") == 0 && bytes.compare(8, 4, "WEBP") == 0;
+}
+
+std::optional<DecodedImage> decode_webp(const std::string& bytes, std::string* why) {
+    const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+    int w = 0, h = 0;
+    if (!WebPGetInfo(data, bytes.size(), &w, &h) || w <= 0 || h <= 0) {
+        if (why) *why = "not a WebP image libwebp reads";
+        return std::nullopt;
+    }
+    if (w > kMaxImageSide || h > kMaxImageSide) {
+        if (why) *why = "a WebP image larger than 16384 pixels on a side";
+        return std::nullopt;
+    }
+    DecodedImage image;
+    image.width = uint32_t(w);
+    image.height = uint32_t(h);
+    image.rgba.resize(size_t(w) * size_t(h) * 4);
+    if (!WebPDecodeRGBAInto(data, bytes.size(), image.rgba.data(), image.rgba.size(), w * 4)) {
+        if (why) *why = "a WebP image that does not decode";
+        return std::nullopt;
+    }
+    return image;
+}
 
 }  // namespace
 
@@ -23,6 +53,7 @@ const uint8_t* DecodedImage::at(float u, float v) const {
 }
 
 std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why) {
+    if (is_webp(bytes)) return decode_webp(bytes, why);
     int w = 0, h = 0, channels = 0;
     stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h,
                                           &channels, 4);

@@ -1,6 +1,8 @@
 // Decoding the input's texture images (core/model.h Material::texture: the encoded file) with
-// stb_image (Debian's libstb: PNG, JPEG, TGA, BMP, ...). Used by render (textures in GL), the
-// .glb (TGA and BMP re-encoded as PNG) and OUT.pieces.ply (vertex colours from the texture).
+// stb_image (Debian's libstb: PNG, JPEG, TGA, BMP, ...) and libwebp (WebP, as glTF's
+// EXT_texture_webp and web tools' texture compression store them). Used by render (textures in
+// GL), the .glb (TGA, BMP and WebP re-encoded as PNG) and OUT.pieces.ply (vertex colours from the
+// texture).
 #pragma once
 
 #include <array>
@@ -20,7 +22,8 @@ struct DecodedImage {
     const uint8_t* at(float u, float v) const;
 };
 
-// nullopt, with `why` set, when the bytes are not an image stb_image reads.
+// nullopt, with `why` set, when the bytes are not an image stb_image or libwebp reads (or a WebP
+// over 16384 pixels on a side).
 std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why);
 
 // The mean colour of an image in linear light (alpha ignored).

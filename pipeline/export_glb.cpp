@@ -234,7 +234,7 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
 }
 
 // The model's textures as embedded images: PNG and JPEG files as they are, any other format
-// (TGA, BMP) decoded and stored as PNG (glTF 2.0 allows those two only).
+// (TGA, BMP, WebP) decoded and stored as PNG (glTF 2.0 allows those two only).
 void add_textures(SceneParts& parts, const Model& model) {
     std::vector<DecodedImage> images;
     parts.looks = material_looks(model, &images);

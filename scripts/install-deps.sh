@@ -16,8 +16,8 @@ PACKAGES=(
   libbullet-dev libeigen3-dev
   # render
   libosmesa6-dev libpng-dev zlib1g-dev
-  # textures: PNG, JPEG and TGA decoding (stb_image)
-  libstb-dev
+  # textures: PNG, JPEG and TGA decoding (stb_image), WebP (glTF's EXT_texture_webp)
+  libstb-dev libwebp-dev
   # core: logging, CLI, shot files, JSON
   libspdlog-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   # tests

@@ -151,6 +151,7 @@ TEST(Appearance, ATextureIsFoundByTheEndOfItsWrittenPathAboveTheFile) {
 TEST(Appearance, ImageTypesByTheirFirstBytesElseTheirName) {
     EXPECT_EQ(image_mime("\x89PNG\r\n\x1a\nrest", "x.tga"), "image/png");
     EXPECT_EQ(image_mime("\xff\xd8\xff\xe0", "x"), "image/jpeg");
+    EXPECT_EQ(image_mime(std::string("RIFF\x40\0\0\0WEBPVP8L", 16), "x.png"), "image/webp");
     EXPECT_EQ(image_mime("whatever", "a/b/C.TGA"), "image/x-tga");
     EXPECT_EQ(image_mime("whatever", "c.xyz"), "");
 }

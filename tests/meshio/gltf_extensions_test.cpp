@@ -1,19 +1,22 @@
-// glTF files as gltfpack writes them (meshio/gltf_extensions.h): quantized positions and texture
-// coordinates (KHR_mesh_quantization, with a KHR_texture_transform scaling them back), and the same
-// meshopt-compressed (EXT_meshopt_compression). Both read as the OBJ they were made from: the
-// same surface, and every triangle reads the same part of the texture. A damaged compressed file
-// is refused naming the file and the fix.
+// glTF files as web tools write them (meshio/gltf_extensions.h): gltfpack's quantized positions and
+// texture coordinates (KHR_mesh_quantization, with a KHR_texture_transform scaling them back), the
+// same meshopt-compressed (EXT_meshopt_compression), a texture transform in a plain file, and a
+// WebP texture (EXT_texture_webp). Each reads as the OBJ it was made from: the same surface, and
+// every triangle reads the same part of the texture; Khronos's texture transform test asset reads
+// as it marks correct. A damaged compressed file is refused naming the file and the fix.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
 #include "meshio/appearance.h"
 #include "meshio/gltf_extensions.h"
+#include "meshio/image_decode.h"
 #include "meshio/mesh_load.h"
 #include "support/temp_dir.h"
 
@@ -71,7 +74,8 @@ TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
         }
         return std::make_pair(p, uv);
     };
-    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb", "textured_cube.transformed.gltf"}) {
+    for (const char* name : {"textured_cube.quantized.glb", "textured_cube.meshopt.glb", "textured_cube.transformed.gltf",
+                             "textured_cube.webp.glb"}) {
         const Appearance packed = load_appearance(kDir + name);
         ASSERT_EQ(packed.mesh.triangles.size(), 12u) << name;
         ASSERT_EQ(packed.uv.size(), packed.mesh.vertices.size()) << name;
@@ -91,6 +95,29 @@ TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
             EXPECT_LT(uv_error, 2e-3) << name << " triangle " << t << " reads another part of the texture";
         }
     }
+}
+
+// The cube whose texture is a lossless WebP of quadrants.png named only by EXT_texture_webp (as
+// glTF-Transform writes it): its material carries the WebP, which decodes to the PNG's pixels.
+TEST(GltfExtensions, AWebpTextureIsTheMaterialsImage) {
+    const Appearance a = load_appearance(kDir + "textured_cube.webp.glb");
+    const Material* textured = nullptr;
+    for (const Material& m : a.materials)
+        if (!m.texture.empty()) textured = &m;
+    ASSERT_NE(textured, nullptr) << "the texture was dropped";
+    EXPECT_EQ(textured->texture_mime, "image/webp");
+    std::string png;
+    {
+        std::ifstream in(kDir + "quadrants.png", std::ios::binary);
+        png.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    std::string why;
+    const std::optional<DecodedImage> webp = decode_image(textured->texture, &why), expected = decode_image(png, &why);
+    ASSERT_TRUE(webp.has_value()) << why;
+    ASSERT_TRUE(expected.has_value()) << why;
+    EXPECT_EQ(webp->width, expected->width);
+    EXPECT_EQ(webp->height, expected->height);
+    EXPECT_EQ(webp->rgba, expected->rgba);
 }
 
 // Khronos's TextureTransformTest (assimp-testmodels): its "Rotation" quad (1 m, centred at
