@@ -28,6 +28,7 @@ constexpr uint64_t kMaxFileBytes = 2ull << 30;     // what a GLB's 32-bit length
 constexpr uint64_t kMaxDecodedBytes = 1ull << 31;  // one decoded buffer view at most
 constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 constexpr int kFloat = 5126;
+constexpr size_t kMaxInstances = 1u << 20;  // instanced nodes in a file at most
 const char* const kFix = "or write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
                          "gltfpack), then give shatter plain.glb";
 
@@ -91,7 +92,8 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     // Most files name none of the extensions decoded here: they are not parsed (a .gltf with its
     // buffers inlined can be tens of MB, and is read for the mesh and again for its appearance).
     if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos &&
-        text.find("KHR_texture_transform") == std::string::npos && text.find("EXT_texture_webp") == std::string::npos)
+        text.find("KHR_texture_transform") == std::string::npos && text.find("EXT_texture_webp") == std::string::npos &&
+        text.find("EXT_mesh_gpu_instancing") == std::string::npos)
         return f;
     f.doc = json::parse(text, nullptr, false);
     f.ok = !f.doc.is_discarded() && f.doc.is_object();
@@ -134,6 +136,22 @@ const json* webp_source(const json& texture) {
     return ext.is_object() && ext.contains("source") && ext["source"].is_number_unsigned() ? &ext["source"] : nullptr;
 }
 
+// A node's instances (EXT_mesh_gpu_instancing), or nullptr.
+const json* instancing(const json& node) {
+    if (!node.is_object() || !node.contains("extensions") || !node["extensions"].is_object() ||
+        !node["extensions"].contains("EXT_mesh_gpu_instancing"))
+        return nullptr;
+    const json& ext = node["extensions"]["EXT_mesh_gpu_instancing"];
+    return ext.is_object() && ext.contains("attributes") && ext["attributes"].is_object() ? &ext : nullptr;
+}
+
+bool has_instancing(const json& doc) {
+    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return false;
+    for (const json& n : doc["nodes"])
+        if (instancing(n)) return true;
+    return false;
+}
+
 bool has_webp_textures(const json& doc) {
     if (!doc.contains("textures") || !doc["textures"].is_array()) return false;
     for (const json& t : doc["textures"])
@@ -152,6 +170,7 @@ public:
         dequantize_attributes();
         bake_texture_transforms();
         use_webp_images();
+        expand_instances();
         return write();
     }
 
@@ -305,20 +324,21 @@ private:
                         for (const auto& t : p["targets"]) visit(t);
                 }
     }
-    // The accessor's values as tightly packed floats in a view of their own; a float accessor too
-    // when `copy` (a copy whose values are to change).
-    void to_float(uint64_t index, bool copy = false) {
-        if (index >= array("accessors").size()) fail(fmt::format("attribute names accessor {}, which does not exist", index));
-        json& a = doc_["accessors"][size_t(index)];
+    // The accessor's values as floats, `*width` per element, every index and range checked
+    // against what the file holds.
+    std::vector<float> values_of(uint64_t index, int* width) {
+        if (index >= array("accessors").size()) fail(fmt::format("an attribute names accessor {}, which does not exist", index));
+        const json& a = doc_["accessors"][size_t(index)];
         const std::string what = fmt::format("accessor {}", index);
+        if (!a.is_object()) fail(what + " is not an object");
+        if (a.contains("sparse")) fail(what + " is sparse, which is not decoded here");
         const int type = a.value("componentType", 0);
-        if (type == kFloat && !copy) return;
-        if (a.contains("sparse")) fail(what + " is sparse and quantized, which is not decoded here");
         const std::map<std::string, int> widths = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}};
         const auto w = widths.find(a.value("type", std::string()));
         const int size = type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : type == 5125 || type == kFloat ? 4 : 0;
         if (w == widths.end() || size == 0) fail(what + " has a type or component type glTF does not define");
         const int n = w->second;
+        *width = n;
         const uint64_t count = required(a, "count", what), view = required(a, "bufferView", what);
         if (view >= views_.size()) fail(fmt::format("{} names buffer view {}, which does not exist", what, view));
         const std::string& data = views_[size_t(view)];
@@ -340,11 +360,22 @@ private:
                 default: { uint32_t c; std::memcpy(&c, p, 4); return normalized ? float(c / 4294967295.0) : float(c); }
             }
         };
-        std::string floats(size_t(count) * size_t(n) * 4, '\0');
-        auto* out = reinterpret_cast<float*>(floats.data());
+        std::vector<float> out(size_t(count) * size_t(n));
         const auto* in = reinterpret_cast<const unsigned char*>(data.data() + offset);
         for (uint64_t e = 0; e < count; ++e)
             for (int c = 0; c < n; ++c) out[e * uint64_t(n) + uint64_t(c)] = value(in + e * stride + uint64_t(c * size));
+        return out;
+    }
+    // The accessor's values as tightly packed floats in a view of their own; a float accessor too
+    // when `copy` (a copy whose values are to change).
+    void to_float(uint64_t index, bool copy = false) {
+        if (index >= array("accessors").size()) fail(fmt::format("an attribute names accessor {}, which does not exist", index));
+        json& a = doc_["accessors"][size_t(index)];
+        const int type = a.value("componentType", 0);
+        if (type == kFloat && !copy) return;
+        int n = 0;
+        const std::vector<float> values = values_of(index, &n);
+        const bool normalized = a.value("normalized", false);
         // min and max (POSITION must have them) in the same units.
         for (const char* bound : {"min", "max"})
             if (a.contains(bound) && a[bound].is_array())
@@ -356,6 +387,8 @@ private:
                                           : type == 5122 ? std::max(d / 32767, -1.0) : d / 4294967295.0)
                                        : d;
                     }
+        std::string floats(values.size() * 4, '\0');
+        std::memcpy(floats.data(), values.data(), floats.size());
         json view_json = {{"buffer", 0}, {"byteLength", floats.size()}};
         doc_["bufferViews"].push_back(view_json);
         views_.push_back(std::move(floats));
@@ -476,6 +509,57 @@ private:
             if (t["extensions"].empty()) t.erase("extensions");
         }
     }
+    // A node drawing its mesh at many places (EXT_mesh_gpu_instancing: glTF-Transform's
+    // `optimize` makes every mesh used more than a few times one), which assimp 5.2 draws once, at
+    // the node: each instance becomes a child node with the instance's translation, rotation and
+    // scale (in the node's space, as the extension defines them) and the node's mesh.
+    void expand_instances() {
+        if (!doc_.contains("nodes") || !doc_["nodes"].is_array()) return;
+        const size_t nodes = doc_["nodes"].size();
+        size_t made = 0;
+        for (size_t i = 0; i < nodes; ++i) {
+            const json* ext = instancing(doc_["nodes"][i]);
+            if (!ext || !doc_["nodes"][i].contains("mesh")) continue;
+            const std::string what = fmt::format("node {}'s EXT_mesh_gpu_instancing", i);
+            const json& attributes = (*ext)["attributes"];
+            std::map<std::string, std::vector<float>> values;
+            size_t count = SIZE_MAX;
+            for (const auto& [name, width] : {std::pair<std::string, int>{"TRANSLATION", 3}, {"ROTATION", 4}, {"SCALE", 3}}) {
+                if (!attributes.contains(name)) continue;
+                if (!attributes[name].is_number_unsigned()) fail(fmt::format("{} has a {} that is no accessor", what, name));
+                int n = 0;
+                values[name] = values_of(attributes[name].get<uint64_t>(), &n);
+                if (n != width) fail(fmt::format("{} has a {} of {} components, not {}", what, name, n, width));
+                count = std::min(count, values[name].size() / size_t(width));
+            }
+            if (count == SIZE_MAX) continue;  // no attributes: the node draws its mesh once, as it is
+            made += count;
+            if (made > kMaxInstances)
+                fail(fmt::format("{} draws more than {} instances in all", what, kMaxInstances));
+            const json mesh = doc_["nodes"][i]["mesh"];
+            std::vector<size_t> children;
+            for (size_t k = 0; k < count; ++k) {
+                json child = {{"mesh", mesh}};
+                const auto put = [&](const char* name, const char* key, int width) {
+                    if (!values.count(name)) return;
+                    json v = json::array();
+                    for (int c = 0; c < width; ++c) v.push_back(values[name][k * size_t(width) + size_t(c)]);
+                    child[key] = v;
+                };
+                put("TRANSLATION", "translation", 3);
+                put("ROTATION", "rotation", 4);
+                put("SCALE", "scale", 3);
+                doc_["nodes"].push_back(std::move(child));
+                children.push_back(doc_["nodes"].size() - 1);
+            }
+            json& node = doc_["nodes"][i];
+            if (!node.contains("children") || !node["children"].is_array()) node["children"] = json::array();
+            for (size_t c : children) node["children"].push_back(c);
+            node.erase("mesh");
+            node["extensions"].erase("EXT_mesh_gpu_instancing");
+            if (node["extensions"].empty()) node.erase("extensions");
+        }
+    }
     static void strip_transforms(json& node, const std::vector<json>& baked) {
         if (node.is_object()) {
             if (node.contains("index") && node.contains("extensions") && node["extensions"].is_object() &&
@@ -507,7 +591,7 @@ private:
                 json kept = json::array();
                 for (const auto& e : doc_[list])
                     if (!(e.is_string() && (e == "EXT_meshopt_compression" || e == "KHR_mesh_quantization" ||
-                                            e == "EXT_texture_webp")))
+                                            e == "EXT_texture_webp" || e == "EXT_mesh_gpu_instancing")))
                         kept.push_back(e);
                 doc_[list] = kept;
             }
@@ -545,7 +629,8 @@ std::optional<std::string> plain_glb(const std::string& path) {
     const GltfFile probe = read_gltf(path, false);
     if (!probe.ok) return std::nullopt;
     const bool unreadable = !first_unreadable(probe.doc).empty();
-    if (!unreadable && !transforms_base_colour(probe.doc) && !has_webp_textures(probe.doc)) return std::nullopt;
+    if (!unreadable && !transforms_base_colour(probe.doc) && !has_webp_textures(probe.doc) && !has_instancing(probe.doc))
+        return std::nullopt;
     GltfFile f = read_gltf(path, true);
     try {
         return Decoder(path, f).glb();
@@ -554,7 +639,7 @@ std::optional<std::string> plain_glb(const std::string& path) {
         throw_input_error(path, fmt::format("its glTF JSON has a value of the wrong type ({})", e.what()),
                           std::string("check that the file is complete, ") + kFix);
     } catch (const Error&) {
-        // A file assimp reads by itself, decoded only for its texture transforms or WebP images:
+        // A file assimp reads by itself, decoded only for its textures or instances:
         // the reader says what is wrong with it, if anything.
         if (!unreadable) return std::nullopt;
         throw;

@@ -17,7 +17,9 @@
 // applies the transform to the coordinates instead, also in a file that needs nothing else.
 // And one assimp 5.2 does not know: EXT_texture_webp (a texture's WebP image, often without a PNG
 // fallback; glTF-Transform's and gltfpack's WebP texture compression), which plain_glb makes the
-// texture's source (meshio/image_decode.h decodes WebP).
+// texture's source (meshio/image_decode.h decodes WebP); and EXT_mesh_gpu_instancing (one node
+// drawing its mesh at many places; glTF-Transform's `optimize` writes every repeated mesh so),
+// which assimp 5.2 draws once: plain_glb makes each instance a child node.
 #pragma once
 
 #include <optional>
@@ -31,9 +33,9 @@ namespace shatter {
 std::string unreadable_gltf_extension(const std::string& path);
 
 // The file as a plain GLB when unreadable_gltf_extension finds one, a material's base colour
-// texture has a texture transform or a texture a WebP image, else nullopt. Throws Error(BadInput) naming the file and what
+// texture has a texture transform, a texture a WebP image or a node instances, else nullopt. Throws Error(BadInput) naming the file and what
 // is out of bounds or not decodable, with the gltfpack command that writes the file without
-// them; a file that needs decoding only for those textures and cannot be decoded is left
+// them; a file that needs decoding only for those textures or instances and cannot be decoded is left
 // to assimp (nullopt), which reads it as before.
 std::optional<std::string> plain_glb(const std::string& path);
 

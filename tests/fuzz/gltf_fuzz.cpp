@@ -3,7 +3,7 @@
 // (the mesh target reaches it only inside the import's child process, where a crash is reported,
 // not found). Input: a .glb file. Seeds: tests/fuzz/corpus/gltf/ (gltfpack's quantized and
 // compressed cubes, a cube whose texture coordinates a texture transform brings back, a cube
-// with a WebP texture, a plain tetrahedron).
+// with a WebP texture, three instances of a cube, a plain tetrahedron).
 #include <string_view>
 
 #include "meshio/gltf_extensions.h"

@@ -3,7 +3,8 @@
 // same meshopt-compressed (EXT_meshopt_compression), a texture transform in a plain file, and a
 // WebP texture (EXT_texture_webp). Each reads as the OBJ it was made from: the same surface, and
 // every triangle reads the same part of the texture; Khronos's texture transform test asset reads
-// as it marks correct. A damaged compressed file is refused naming the file and the fix.
+// as it marks correct. A mesh instanced by a node (EXT_mesh_gpu_instancing) is drawn at every
+// instance. A damaged compressed file is refused naming the file and the fix.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -95,6 +96,21 @@ TEST(GltfExtensions, EveryTriangleReadsTheTextureWhereTheObjDoes) {
             EXPECT_LT(uv_error, 2e-3) << name << " triangle " << t << " reads another part of the texture";
         }
     }
+}
+
+// The unit cube drawn three times by one node (EXT_mesh_gpu_instancing, rotations as normalized
+// shorts): at the origin; 3 m along x turned 90 degrees about y (x from 3 to 4, z from -1 to 0);
+// 3 m along z scaled 2. Three cubes of 1 + 1 + 8 m^3 within (0, 0, -1) to (4, 2, 5).
+TEST(GltfExtensions, InstancedMeshesAreDrawnAtEveryInstance) {
+    const TriangleMesh m = load_mesh_file(kDir + "instanced_cubes.glb").mesh;
+    ASSERT_EQ(m.triangles.size(), 36u) << "an instance is missing";
+    double volume = 0;
+    for (const Tri& t : m.triangles) volume += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6;
+    EXPECT_NEAR(volume, 10, 1e-3);
+    Vec3 lo = Vec3::Constant(1e9), hi = -lo;
+    for (const Vec3& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    EXPECT_NEAR((lo - Vec3(0, 0, -1)).cwiseAbs().maxCoeff(), 0, 1e-3);
+    EXPECT_NEAR((hi - Vec3(4, 2, 5)).cwiseAbs().maxCoeff(), 0, 1e-3);
 }
 
 // The cube whose texture is a lossless WebP of quadrants.png named only by EXT_texture_webp (as
