@@ -148,6 +148,15 @@ Material read_material(const aiScene& scene, const aiMaterial& m, unsigned index
             return out;
         }
     }
+    if (out.texture.size() >= 12 && out.texture.compare(0, 12, "\xabKTX 20\xbb\r\n\x1a\n") == 0) {
+        warnings.push_back(fmt::format("{}: its texture '{}' is a KTX2 image (Basis Universal, KHR_texture_basisu), "
+                                       "which shatter does not read; drawn in its base colour (fix: export the model "
+                                       "with PNG, JPEG or WebP textures)",
+                                       where, tex_name));
+        out.texture.clear();
+        out.texture_name.clear();
+        return out;
+    }
     out.texture_mime = image_mime(out.texture, tex_name);
     return out;
 }

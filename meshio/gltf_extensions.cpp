@@ -93,7 +93,7 @@ GltfFile read_gltf(const std::string& path, bool with_bin) {
     // buffers inlined can be tens of MB, and is read for the mesh and again for its appearance).
     if (text.find("EXT_meshopt_compression") == std::string::npos && text.find("KHR_mesh_quantization") == std::string::npos &&
         text.find("KHR_texture_transform") == std::string::npos && text.find("EXT_texture_webp") == std::string::npos &&
-        text.find("EXT_mesh_gpu_instancing") == std::string::npos)
+        text.find("EXT_mesh_gpu_instancing") == std::string::npos && text.find("KHR_texture_basisu") == std::string::npos)
         return f;
     f.doc = json::parse(text, nullptr, false);
     f.ok = !f.doc.is_discarded() && f.doc.is_object();
@@ -127,13 +127,19 @@ bool transforms_base_colour(const json& doc) {
     return false;
 }
 
-// A texture's WebP image (EXT_texture_webp), or nullptr.
-const json* webp_source(const json& texture) {
-    if (!texture.is_object() || !texture.contains("extensions") || !texture["extensions"].is_object() ||
-        !texture["extensions"].contains("EXT_texture_webp"))
-        return nullptr;
-    const json& ext = texture["extensions"]["EXT_texture_webp"];
-    return ext.is_object() && ext.contains("source") && ext["source"].is_number_unsigned() ? &ext["source"] : nullptr;
+// The image a texture names through one of the extensions assimp 5.2 does not know, or nullptr:
+// EXT_texture_webp's (a WebP image, read here), or KHR_texture_basisu's when the texture has no
+// other (a KTX2 image, which the appearance reader then names in a warning instead of dropping
+// the texture unsaid).
+const json* extension_source(const json& texture) {
+    if (!texture.is_object() || !texture.contains("extensions") || !texture["extensions"].is_object()) return nullptr;
+    const json& extensions = texture["extensions"];
+    for (const std::string name : {"EXT_texture_webp", "KHR_texture_basisu"}) {
+        if (!extensions.contains(name) || (name == "KHR_texture_basisu" && texture.contains("source"))) continue;
+        const json& ext = extensions[name];
+        if (ext.is_object() && ext.contains("source") && ext["source"].is_number_unsigned()) return &ext["source"];
+    }
+    return nullptr;
 }
 
 // A node's instances (EXT_mesh_gpu_instancing), or nullptr.
@@ -152,10 +158,10 @@ bool has_instancing(const json& doc) {
     return false;
 }
 
-bool has_webp_textures(const json& doc) {
+bool has_extension_images(const json& doc) {
     if (!doc.contains("textures") || !doc["textures"].is_array()) return false;
     for (const json& t : doc["textures"])
-        if (webp_source(t)) return true;
+        if (extension_source(t)) return true;
     return false;
 }
 
@@ -169,7 +175,7 @@ public:
         decode_views();
         dequantize_attributes();
         bake_texture_transforms();
-        use_webp_images();
+        use_extension_images();
         expand_instances();
         return write();
     }
@@ -497,12 +503,13 @@ private:
     // A texture with a WebP image (EXT_texture_webp: glTF-Transform's and gltfpack's WebP texture
     // compression, often with no PNG or JPEG fallback) takes it as its source, which assimp reads
     // and meshio/image_decode.h decodes; assimp 5.2 does not know the extension and left such a
-    // texture without an image.
-    void use_webp_images() {
+    // texture without an image. So does a texture with only a KTX2 image (KHR_texture_basisu),
+    // which no Debian library decodes: the appearance reader then says so.
+    void use_extension_images() {
         if (!doc_.contains("textures") || !doc_["textures"].is_array()) return;
         const size_t images = array("images").size();
         for (json& t : doc_["textures"]) {
-            const json* source = webp_source(t);
+            const json* source = extension_source(t);
             if (!source || source->get<uint64_t>() >= images) continue;
             t["source"] = *source;
             t["extensions"].erase("EXT_texture_webp");
@@ -629,7 +636,7 @@ std::optional<std::string> plain_glb(const std::string& path) {
     const GltfFile probe = read_gltf(path, false);
     if (!probe.ok) return std::nullopt;
     const bool unreadable = !first_unreadable(probe.doc).empty();
-    if (!unreadable && !transforms_base_colour(probe.doc) && !has_webp_textures(probe.doc) && !has_instancing(probe.doc))
+    if (!unreadable && !transforms_base_colour(probe.doc) && !has_extension_images(probe.doc) && !has_instancing(probe.doc))
         return std::nullopt;
     GltfFile f = read_gltf(path, true);
     try {

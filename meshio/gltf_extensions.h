@@ -17,7 +17,8 @@
 // applies the transform to the coordinates instead, also in a file that needs nothing else.
 // And one assimp 5.2 does not know: EXT_texture_webp (a texture's WebP image, often without a PNG
 // fallback; glTF-Transform's and gltfpack's WebP texture compression), which plain_glb makes the
-// texture's source (meshio/image_decode.h decodes WebP); and EXT_mesh_gpu_instancing (one node
+// texture's source (meshio/image_decode.h decodes WebP; a KTX2 image of KHR_texture_basisu, which
+// nothing here decodes, too, so that the appearance reader names it); and EXT_mesh_gpu_instancing (one node
 // drawing its mesh at many places; glTF-Transform's `optimize` writes every repeated mesh so),
 // which assimp 5.2 draws once: plain_glb makes each instance a child node.
 #pragma once

@@ -136,6 +136,16 @@ TEST(GltfExtensions, AWebpTextureIsTheMaterialsImage) {
     EXPECT_EQ(webp->rgba, expected->rgba);
 }
 
+// A texture with only a KTX2 image (KHR_texture_basisu), which nothing on Debian decodes: a warning
+// that names it and the fix, the material drawn in its base colour (assimp alone dropped it unsaid).
+TEST(GltfExtensions, AKtx2TextureIsAWarningNamingIt) {
+    const Appearance a = load_appearance(kDir + "textured_cube.ktx2.glb");
+    for (const Material& m : a.materials) EXPECT_TRUE(m.texture.empty()) << m.name;
+    ASSERT_EQ(a.warnings.size(), 1u);
+    EXPECT_NE(a.warnings[0].find("KTX2"), std::string::npos) << a.warnings[0];
+    EXPECT_NE(a.warnings[0].find("fix: export the model with PNG, JPEG or WebP textures"), std::string::npos) << a.warnings[0];
+}
+
 // Khronos's TextureTransformTest (assimp-testmodels): its "Rotation" quad (1 m, centred at
 // (-1.1, -0.55), texture coordinates (0, 0) at its top-left corner to (1, 1)) reads Arrow.png, an
 // arrow along the texture's diagonal, through a rotation of 22.5 degrees, with three markers
