@@ -186,15 +186,47 @@ void check_scale(const std::string& path, double scale) {
 }
 
 
+// Formats users bring that assimp 5.2 does not read, by extension: what the file is and where a
+// mesh comes from.
+struct ForeignFormat {
+    std::vector<std::string> extensions;
+    const char* what;
+    const char* fix;
+};
+const std::vector<ForeignFormat>& foreign_formats() {
+    static const std::vector<ForeignFormat> formats = {
+        {{".usd", ".usda", ".usdc", ".usdz"}, "a USD file (Universal Scene Description; .usdz is Apple's AR format)",
+         "export it as glTF 2.0 (.glb), OBJ or STL from the program that made it; Blender's own builds from 3.0 on "
+         "import USD (File > Import > Universal Scene Description; Debian's is built without it) and export glTF 2.0"},
+        {{".step", ".stp", ".iges", ".igs", ".brep", ".sat", ".x_t"}, "a CAD file (exact surfaces, not a mesh)",
+         "export a mesh from the CAD program (STL, OBJ or glTF); FreeCAD opens STEP and IGES files and exports STL "
+         "and OBJ (File > Export)"},
+        {{".skp"}, "a SketchUp model", "export it from SketchUp as COLLADA (.dae) or OBJ"},
+        {{".max"}, "a 3ds Max scene", "export it from 3ds Max as FBX, OBJ or glTF"},
+        {{".ma", ".mb"}, "a Maya scene", "export it from Maya as FBX or OBJ"},
+        {{".c4d"}, "a Cinema 4D scene", "export it from Cinema 4D as FBX, OBJ or glTF"},
+        {{".3dm"}, "a Rhino model", "export it from Rhino as OBJ, STL or FBX"},
+        {{".wrl", ".vrml"}, "a VRML file", "convert it to OBJ, STL or glTF, e.g. in MeshLab (File > Export Mesh As)"},
+        {{".dwg"}, "an AutoCAD drawing", "export its 3D solids from AutoCAD as STL, or the drawing as DXF"},
+        {{".vox"}, "a MagicaVoxel model", "export it from MagicaVoxel as OBJ or PLY"},
+    };
+    return formats;
+}
+
 // What to do about a file assimp cannot read. Blender's own files are read only as Blender 2.4 to
 // 2.7x saved them (their header: "BLENDER", a pointer size, an endianness, three version digits);
 // a newer one, or one saved compressed by Blender 3 and later (zstd), is exported from Blender.
 std::string format_fix(const std::string& path) {
     const std::string head = read_file_head(path, 12);
-    const bool blend = lower_extension(path) == ".blend" || head.rfind("BLENDER", 0) == 0;
-    if (!blend)
+    const std::string ext = lower_extension(path);
+    const bool blend = ext == ".blend" || head.rfind("BLENDER", 0) == 0;
+    if (!blend) {
+        for (const ForeignFormat& f : foreign_formats())
+            if (std::find(f.extensions.begin(), f.extensions.end(), ext) != f.extensions.end())
+                return fmt::format("this is {}, which the mesh reader (assimp) does not read: {}", f.what, f.fix);
         return "check that the file is a complete mesh in a format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, 3DS, "
                "FBX, ...)";
+    }
     std::string export_it = "in Blender, File > Export > glTF 2.0 (.glb) or Wavefront (.obj), and give shatter that file";
     // With Blender installed, the command that does it (for a name the quotes below can hold).
     const fs::path glb = fs::path(path).replace_extension(".glb");
