@@ -429,7 +429,15 @@ std::string lower_extension(const std::string& path) {
 
 bool z_up(UpAxis up, const std::string& path) {
     if (up != UpAxis::Auto) return up == UpAxis::Z;
-    return lower_extension(path) == ".stl";
+    return !z_up_format(path).empty();
+}
+
+std::string z_up_format(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".stl") return "an STL file: CAD and 3D printing make z up";
+    if (ext == ".3mf") return "a 3MF file: 3D printing makes z up";
+    if (ext == ".blend") return "a Blender file: Blender makes z up";
+    return "";
 }
 
 std::string rounding_hint(const FloatRounding& r) {

@@ -79,7 +79,11 @@ std::string read_file_head(const std::string& path, size_t bytes);
 // The file name's extension in lower case, with its dot (".glb"); "" without one.
 std::string lower_extension(const std::string& path);
 
-// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl file).
+// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl, .3mf or .blend file).
 bool z_up(UpAxis up, const std::string& path);
+
+// Why `path` is z-up by its format ("an STL file: CAD and 3D printing make z up"), or "" for a
+// format read y-up.
+std::string z_up_format(const std::string& path);
 
 }  // namespace shatter

@@ -340,8 +340,7 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
         stand_up(loaded.mesh.vertices);
         const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
         if (settings.up == UpAxis::Auto)
-            choices.note(what, "an STL file: CAD and 3D printing make z up; [mesh] up = \"y\" keeps the file's "
-                               "axes");
+            choices.note(what, z_up_format(settings.path) + "; [mesh] up = \"y\" keeps the file's axes");
         else
             spdlog::info("{} ([mesh] up = \"z\")", what);
     }

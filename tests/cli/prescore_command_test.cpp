@@ -176,6 +176,17 @@ TEST(PrescoreCommand, AnStlFileStandsUpAndUpYKeepsItsAxes) {
     EXPECT_NEAR(kept.y(), 0.12, 1e-7) << kept.transpose();
 }
 
+// Blender's own files are z-up and assimp reads them as they are: assimp's HUMAN.blend (a figure
+// 10.7 units tall along the file's z, 1.6 deep along its y) stands along y.
+TEST(PrescoreCommand, ABlenderFileStandsUp) {
+    const auto r = run_shatter({"info", "/usr/share/assimp/models/BLEND/HUMAN.blend", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["up"], "z");
+    EXPECT_NEAR(j["size_m"][1].get<double>(), 0.3, 1e-6) << j["size_m"];
+    EXPECT_LT(j["size_m"][2].get<double>(), 0.1) << j["size_m"];
+}
+
 // One bad input: the exit code, a message naming `expect`, and no file left in the output folder.
 struct BadCase {
     const char* name;
