@@ -266,6 +266,13 @@ double file_units(const aiScene& scene, const std::string& path) {
     return 0;
 }
 
+// LoadedMesh::states_z_up: an FBX file's GlobalSettings, which assimp keeps as metadata.
+bool states_z_up(const aiScene& scene, const std::string& path) {
+    int32_t axis = -1, sign = 0;
+    return lower_extension(path) == ".fbx" && scene.mMetaData != nullptr && scene.mMetaData->Get("UpAxis", axis) &&
+           scene.mMetaData->Get("UpAxisSign", sign) && axis == 2 && sign == 1;
+}
+
 // LoadedMesh::plain, from the scene as read, by Appearance::plain's rule as read_material reads
 // a material (meshio/appearance.cpp): no mesh with vertex colours, no material with a texture
 // (found or not: one not found is a warning), and every material assimp's default or white.
@@ -325,7 +332,7 @@ LoadedMesh import_in_process(const std::string& path) {
 
     Merger merger(path);
     if (scene->mRootNode != nullptr) merger.add_node(*scene, *scene->mRootNode, Mat4::Identity());
-    LoadedMesh loaded{merger.take(), file_units(*scene, path), merger.rounding(), plain};
+    LoadedMesh loaded{merger.take(), file_units(*scene, path), merger.rounding(), plain, states_z_up(*scene, path)};
     if (loaded.mesh.triangles.empty()) {
         throw_input_error(path, "mesh file has no triangles (only points and lines)",
                           "give a file with a surface mesh; points and lines are ignored");
@@ -346,6 +353,7 @@ std::string serialize(const LoadedMesh& loaded) {
     for (const double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
         out.append(reinterpret_cast<const char*>(x), 8);
     out.push_back(loaded.plain ? 1 : 0);
+    out.push_back(loaded.states_z_up ? 1 : 0);
     out.append(reinterpret_cast<const char*>(&nv), 8);
     for (const Vec3& v : m.vertices) out.append(reinterpret_cast<const char*>(v.data()), 24);
     out.append(reinterpret_cast<const char*>(&nt), 8);
@@ -363,6 +371,7 @@ LoadedMesh deserialize(const std::string& bytes) {
     for (double* x : {&loaded.rounding.step, &loaded.rounding.coordinate, &loaded.rounding.size})
         std::memcpy(x, bytes.data() + at, 8), at += 8;
     loaded.plain = bytes[at++] != 0;
+    loaded.states_z_up = bytes[at++] != 0;
     std::memcpy(&nv, bytes.data() + at, 8);
     at += 8;
     m.vertices.resize(nv);
@@ -427,12 +436,13 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-bool z_up(UpAxis up, const std::string& path) {
+bool z_up(UpAxis up, const std::string& path, bool states_z_up) {
     if (up != UpAxis::Auto) return up == UpAxis::Z;
-    return !z_up_format(path).empty();
+    return !z_up_format(path, states_z_up).empty();
 }
 
-std::string z_up_format(const std::string& path) {
+std::string z_up_format(const std::string& path, bool states_z_up) {
+    if (states_z_up) return "an FBX file whose settings make z up (UpAxis), which the reader does not turn";
     const std::string ext = lower_extension(path);
     if (ext == ".stl") return "an STL file: CAD and 3D printing make z up";
     if (ext == ".3mf") return "a 3MF file: 3D printing makes z up";

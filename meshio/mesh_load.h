@@ -48,6 +48,9 @@ struct LoadedMesh {
     // white or assimp's default (a file that names none: an OBJ without a library, STL, most PLY).
     // Its appearance (meshio/appearance.h) would be plain, so a second reading can be skipped.
     bool plain = false;
+    // An FBX file whose settings say z is up (GlobalSettings UpAxis 2, UpAxisSign 1): assimp reads
+    // its coordinates as they are, without turning them.
+    bool states_z_up = false;
 };
 
 // A step of the reading's rounding past this fraction of the mesh's size is worth a warning: the
@@ -79,11 +82,12 @@ std::string read_file_head(const std::string& path, size_t bytes);
 // The file name's extension in lower case, with its dot (".glb"); "" without one.
 std::string lower_extension(const std::string& path);
 
-// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl, .3mf or .blend file).
-bool z_up(UpAxis up, const std::string& path);
+// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl, .3mf or .blend
+// file, or one that states z is up: LoadedMesh::states_z_up).
+bool z_up(UpAxis up, const std::string& path, bool states_z_up);
 
-// Why `path` is z-up by its format ("an STL file: CAD and 3D printing make z up"), or "" for a
-// format read y-up.
-std::string z_up_format(const std::string& path);
+// Why `path` is z-up by its format or its own statement ("an STL file: CAD and 3D printing make z
+// up"), or "" for a file read y-up.
+std::string z_up_format(const std::string& path, bool states_z_up);
 
 }  // namespace shatter

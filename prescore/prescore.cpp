@@ -335,12 +335,12 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
                                             : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
         refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, settings.path);
     }
-    in.turned = z_up(settings.up, settings.path);
+    in.turned = z_up(settings.up, settings.path, loaded.states_z_up);
     if (in.turned) {
         stand_up(loaded.mesh.vertices);
         const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
         if (settings.up == UpAxis::Auto)
-            choices.note(what, z_up_format(settings.path) + "; [mesh] up = \"y\" keeps the file's axes");
+            choices.note(what, z_up_format(settings.path, loaded.states_z_up) + "; [mesh] up = \"y\" keeps the file's axes");
         else
             spdlog::info("{} ([mesh] up = \"z\")", what);
     }

@@ -176,6 +176,20 @@ TEST(PrescoreCommand, AnStlFileStandsUpAndUpYKeepsItsAxes) {
     EXPECT_NEAR(kept.y(), 0.12, 1e-7) << kept.transpose();
 }
 
+// An FBX file states its up axis, which assimp does not apply: a 0.2 x 0.4 x 1 m box that Blender
+// exported z-up (its GlobalSettings UpAxis 2) stands along y; one that says y is up keeps its axes.
+TEST(PrescoreCommand, AnFbxFileThatSaysZIsUpStandsUp) {
+    auto r = run_shatter({"info", SHATTER_SOURCE_DIR "/tests/fixtures/axes/tall_box_z_up.fbx", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["up"], "z");
+    EXPECT_NEAR(j["size_m"][1].get<double>(), 1.0, 1e-6) << j["size_m"];
+    EXPECT_NEAR(j["size_m"][2].get<double>(), 0.4, 1e-6) << j["size_m"];
+    r = run_shatter({"info", "/usr/share/assimp/models/FBX/spider.fbx", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["up"], "y");
+}
+
 // Blender's own files are z-up and assimp reads them as they are: assimp's HUMAN.blend (a figure
 // 10.7 units tall along the file's z, 1.6 deep along its y) stands along y.
 TEST(PrescoreCommand, ABlenderFileStandsUp) {
