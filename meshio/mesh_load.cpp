@@ -266,8 +266,14 @@ double file_units(const aiScene& scene, const std::string& path) {
     return 0;
 }
 
-// LoadedMesh::states_z_up: an FBX file's GlobalSettings, which assimp keeps as metadata.
+// LoadedMesh::states_z_up: an FBX file's GlobalSettings, which assimp keeps as metadata, or a PLY
+// header's comment that Blender wrote it (Blender writes PLY z-up; Stanford's scans, the usual PLY
+// files, are y-up).
 bool states_z_up(const aiScene& scene, const std::string& path) {
+    if (const std::string head = read_file_head(path, 4096); looks_like_ply(head)) {
+        const size_t end = head.find("end_header");
+        return head.substr(0, end).find("\ncomment Created by Blender") != std::string::npos;
+    }
     int32_t axis = -1, sign = 0;
     return lower_extension(path) == ".fbx" && scene.mMetaData != nullptr && scene.mMetaData->Get("UpAxis", axis) &&
            scene.mMetaData->Get("UpAxisSign", sign) && axis == 2 && sign == 1;
@@ -442,8 +448,9 @@ bool z_up(UpAxis up, const std::string& path, bool states_z_up) {
 }
 
 std::string z_up_format(const std::string& path, bool states_z_up) {
-    if (states_z_up) return "an FBX file whose settings make z up (UpAxis), which the reader does not turn";
     const std::string ext = lower_extension(path);
+    if (states_z_up && ext == ".fbx") return "an FBX file whose settings make z up (UpAxis), which the reader does not turn";
+    if (states_z_up) return "a PLY file Blender wrote (its header says so): Blender makes z up";
     if (ext == ".stl") return "an STL file: CAD and 3D printing make z up";
     if (ext == ".3mf") return "a 3MF file: 3D printing makes z up";
     if (ext == ".blend") return "a Blender file: Blender makes z up";

@@ -48,8 +48,8 @@ struct LoadedMesh {
     // white or assimp's default (a file that names none: an OBJ without a library, STL, most PLY).
     // Its appearance (meshio/appearance.h) would be plain, so a second reading can be skipped.
     bool plain = false;
-    // An FBX file whose settings say z is up (GlobalSettings UpAxis 2, UpAxisSign 1): assimp reads
-    // its coordinates as they are, without turning them.
+    // An FBX file whose settings say z is up (GlobalSettings UpAxis 2, UpAxisSign 1), or a PLY file
+    // whose header says Blender wrote it: assimp reads their coordinates as they are.
     bool states_z_up = false;
 };
 

@@ -190,6 +190,32 @@ TEST(PrescoreCommand, AnFbxFileThatSaysZIsUpStandsUp) {
     EXPECT_EQ(nlohmann::json::parse(r.out)["up"], "y");
 }
 
+// Blender writes PLY z-up and says so in the header's comment; other PLY files (Stanford's scans)
+// are y-up. The same 0.2 x 0.4 x 1 box, tall along the file's z, with and without that comment.
+TEST(PrescoreCommand, APlyFileBlenderWroteStandsUp) {
+    TempDir dir;
+    const auto ply = [](const std::string& comment) {
+        std::string s = "ply\nformat ascii 1.0\n" + comment +
+                        "element vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 12\nproperty list uchar uint vertex_indices\nend_header\n";
+        for (int k = 0; k < 8; ++k) s += fmt::format("{} {} {}\n", 0.2 * (k & 1), 0.4 * ((k >> 1) & 1), 1.0 * (k >> 2));
+        for (const char* f : {"0 2 1", "1 2 3", "4 5 6", "5 7 6", "0 1 4", "1 5 4", "2 6 3", "3 6 7", "0 4 2", "2 4 6",
+                              "1 3 5", "3 7 5"})
+            s += std::string("3 ") + f + "\n";
+        return s;
+    };
+    auto r = run_shatter({"info", dir.write("blender.ply", ply("comment Created by Blender 3.4.1 - www.blender.org\n")), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["up"], "z");
+    EXPECT_NEAR(j["size_m"][1].get<double>(), 0.3, 1e-6) << j["size_m"];
+    r = run_shatter({"info", dir.write("scan.ply", ply("")), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["up"], "y");
+    EXPECT_NEAR(j["size_m"][2].get<double>(), 0.3, 1e-6) << j["size_m"];
+}
+
 // Blender's own files are z-up and assimp reads them as they are: assimp's HUMAN.blend (a figure
 // 10.7 units tall along the file's z, 1.6 deep along its y) stands along y.
 TEST(PrescoreCommand, ABlenderFileStandsUp) {
