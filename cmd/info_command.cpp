@@ -62,7 +62,7 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     *text = fmt::format("kind          mesh\nmesh          {}\nsize          {}\nup            {}\nmeshing       {}\n"
                         "appearance    {}\n",
                         describe(c), size,
-                        turned ? "the file's +z, turned to +y (" + z_up_format(path, input.loaded.states_z_up) + "; [mesh] up = \"y\" keeps its axes)"
+                        turned ? "the file's +z, turned to +y (" + z_up_format(input.path, input.loaded.states_z_up) + "; [mesh] up = \"y\" keeps its axes)"
                                : std::string("the file's +y ([mesh] up = \"z\" turns a z-up file to stand)"),
                         as_is ? "as it is (Mesh_3 fills it with tets)" : "alpha-wrapped first: " + why,
                         loaded.plain ? "its shape only (drawn in the material colour)"

@@ -324,7 +324,22 @@ void add_appearance(Model& model, const std::string& path, double scale, bool tu
 
 InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
     InputMesh in;
-    in.loaded = load_mesh_file(settings.path);
+    in.path = settings.path;
+    if (std::optional<MeshArchive> archive = MeshArchive::open(settings.path)) {
+        in.archive = std::make_shared<const MeshArchive>(std::move(*archive));
+        in.path = in.archive->mesh_path();
+        const std::vector<std::string>& others = in.archive->other_meshes();
+        std::string why = "the one mesh file in it";
+        if (!others.empty()) {
+            why = fmt::format("of its {} mesh files the likeliest to hold the model whole (glTF, then FBX, Collada, OBJ, "
+                              "3DS; nearest the top; the largest); the others:",
+                              others.size() + 1);
+            for (size_t i = 0; i < others.size() && i < 5; ++i) why += (i ? ", " : " ") + others[i];
+            if (others.size() > 5) why += fmt::format(" and {} more", others.size() - 5);
+        }
+        choices.note(fmt::format("mesh: {} from the archive", in.archive->mesh_name()), why);
+    }
+    in.loaded = load_mesh_file(in.path);
     LoadedMesh& loaded = in.loaded;
     if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
         choices.warn(fmt::format("{}: {}", settings.path, hint));
@@ -335,12 +350,12 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
                                             : (loaded.metres_per_unit > 0 ? loaded.metres_per_unit : 1.0);
         refuse_out_of_scale(bounding_diagonal(loaded.mesh) * given, settings.path);
     }
-    in.turned = z_up(settings.up, settings.path, loaded.states_z_up);
+    in.turned = z_up(settings.up, in.path, loaded.states_z_up);
     if (in.turned) {
         stand_up(loaded.mesh.vertices);
         const std::string what = "up: the file's +z turned to +y (-90 degrees about x)";
         if (settings.up == UpAxis::Auto)
-            choices.note(what, z_up_format(settings.path, loaded.states_z_up) + "; [mesh] up = \"y\" keeps the file's axes");
+            choices.note(what, z_up_format(in.path, loaded.states_z_up) + "; [mesh] up = \"y\" keeps the file's axes");
         else
             spdlog::info("{} ([mesh] up = \"z\")", what);
     }
@@ -428,7 +443,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).
         if (report.render_surfaces > 0 && !loaded.plain) {
-            add_appearance(model, mesh_settings.path, report.scale, read.turned, choices);
+            add_appearance(model, read.path, report.scale, read.turned, choices);
             timer.lap("appearance");
         }
     }

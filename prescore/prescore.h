@@ -10,6 +10,7 @@
 // Each phase is its own file in prescore/; this file only chains them and times them.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "core/model.h"
 #include "core/settings.h"
 #include "core/shot.h"
+#include "meshio/archive.h"
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
 #include "prescore/mesh_check.h"
@@ -41,7 +43,8 @@ struct PrescoreReport {
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
 
-// The object's mesh as prescore takes it, before any check: read (meshio/mesh_load.h), its
+// The object's mesh as prescore takes it, before any check: unpacked first when it comes in a ZIP
+// archive (meshio/archive.h; the mesh chosen in it noted in `choices`), read (meshio/mesh_load.h), its
 // coordinates' rounding warned and a size out of reach refused, turned to stand when the file is
 // z-up ([mesh] up; noted in `choices`), and sized to metres (choose_scale). `shatter info MESH`
 // describes the same mesh.
@@ -49,6 +52,8 @@ struct InputMesh {
     LoadedMesh loaded;  // its coordinates in metres
     double scale = 1;   // metres per file unit
     bool turned = false;  // read z-up and stood up
+    std::string path;     // the mesh file read: the settings' path, or the file chosen in its archive
+    std::shared_ptr<const MeshArchive> archive;  // the unpacked archive, kept while its files are read
 };
 InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices);
 
