@@ -15,7 +15,7 @@ BUILD_DIR="${2:-build-fuzz}"
 JOBS="${3:-2}"
 shift $(( $# > 3 ? 3 : $# ))
 TARGETS=("$@")
-if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=(mesh gltf shot batch model trajectory logs png); fi
+if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=(mesh gltf archive shot batch model trajectory logs png); fi
 
 bash scripts/install-deps.sh > /dev/null
 bash scripts/install-deps.sh --fuzz > /dev/null
