@@ -339,7 +339,16 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
         }
         choices.note(fmt::format("mesh: {} from the archive", in.archive->mesh_name()), why);
     }
-    in.loaded = load_mesh_file(in.path);
+    try {
+        in.loaded = load_mesh_file(in.path);
+    } catch (const Error& e) {
+        if (!in.archive) throw;
+        // The message names the archive and the file in it, not the temporary folder it was unpacked to.
+        std::string message = e.what();
+        for (size_t at = message.find(in.path); at != std::string::npos; at = message.find(in.path))
+            message.replace(at, in.path.size(), fmt::format("{} (its {})", settings.path, in.archive->mesh_name()));
+        throw Error(e.code(), message);
+    }
     LoadedMesh& loaded = in.loaded;
     if (const std::string hint = rounding_hint(loaded.rounding); !hint.empty())
         choices.warn(fmt::format("{}: {}", settings.path, hint));
