@@ -28,7 +28,7 @@ constexpr uint64_t kMaxFileBytes = 2ull << 30;     // what a GLB's 32-bit length
 constexpr uint64_t kMaxDecodedBytes = 1ull << 31;  // one decoded buffer view at most
 constexpr uint32_t kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 constexpr int kFloat = 5126;
-constexpr size_t kMaxInstances = 1u << 20;  // instanced nodes in a file at most
+constexpr uint64_t kMaxInstancedTriangles = 10'000'000;  // what a file's instances may draw in all
 const char* const kFix = "or write it with plain float positions: gltfpack -i FILE -o plain.glb -noq (the npm package "
                          "gltfpack), then give shatter plain.glb";
 
@@ -519,11 +519,12 @@ private:
     // A node drawing its mesh at many places (EXT_mesh_gpu_instancing: glTF-Transform's
     // `optimize` makes every mesh used more than a few times one), which assimp 5.2 draws once, at
     // the node: each instance becomes a child node with the instance's translation, rotation and
-    // scale (in the node's space, as the extension defines them) and the node's mesh.
+    // scale (in the node's space, as the extension defines them) and the node's mesh, while the
+    // instances draw at most kMaxInstancedTriangles.
     void expand_instances() {
         if (!doc_.contains("nodes") || !doc_["nodes"].is_array()) return;
         const size_t nodes = doc_["nodes"].size();
-        size_t made = 0;
+        uint64_t made = 0;  // triangles the instances draw
         for (size_t i = 0; i < nodes; ++i) {
             const json* ext = instancing(doc_["nodes"][i]);
             if (!ext || !doc_["nodes"][i].contains("mesh")) continue;
@@ -540,10 +541,11 @@ private:
                 count = std::min(count, values[name].size() / size_t(width));
             }
             if (count == SIZE_MAX) continue;  // no attributes: the node draws its mesh once, as it is
-            made += count;
-            if (made > kMaxInstances)
-                fail(fmt::format("{} draws more than {} instances in all", what, kMaxInstances));
             const json mesh = doc_["nodes"][i]["mesh"];
+            made += uint64_t(count) * std::max<uint64_t>(1, triangles_of(mesh));
+            if (made > kMaxInstancedTriangles)
+                fail(fmt::format("{} draws more than {} triangles with the file's other instances", what,
+                                 kMaxInstancedTriangles));
             std::vector<size_t> children;
             for (size_t k = 0; k < count; ++k) {
                 json child = {{"mesh", mesh}};
@@ -566,6 +568,25 @@ private:
             node["extensions"].erase("EXT_mesh_gpu_instancing");
             if (node["extensions"].empty()) node.erase("extensions");
         }
+    }
+    // The triangles a mesh draws, from its accessors' counts (0 for a mesh not found).
+    uint64_t triangles_of(const json& mesh) const {
+        const json& meshes = array("meshes");
+        if (!mesh.is_number_unsigned() || mesh.get<uint64_t>() >= meshes.size()) return 0;
+        const json& m = meshes[mesh.get<size_t>()];
+        if (!m.is_object() || !m.contains("primitives") || !m["primitives"].is_array()) return 0;
+        const json& accessors = array("accessors");
+        uint64_t n = 0;
+        for (const json& p : m["primitives"]) {
+            const json* counted = p.is_object() && p.contains("indices") ? &p["indices"]
+                                  : p.is_object() && p.contains("attributes") && p["attributes"].is_object() &&
+                                            p["attributes"].contains("POSITION")
+                                      ? &p["attributes"]["POSITION"]
+                                      : nullptr;
+            if (counted && counted->is_number_unsigned() && counted->get<uint64_t>() < accessors.size())
+                n = std::min(n + number(accessors[counted->get<size_t>()], "count", 0) / 3, kMaxInstancedTriangles + 1);
+        }
+        return n;  // (at most one past the limit: products of it with an instance count stay in range)
     }
     static void strip_transforms(json& node, const std::vector<json>& baked) {
         if (node.is_object()) {
