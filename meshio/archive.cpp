@@ -83,7 +83,7 @@ std::optional<MeshArchive> MeshArchive::open(const std::string& path) {
         char raw_name[4096];
         if (unzGetCurrentFileInfo64(zip.file, &info, raw_name, sizeof raw_name, nullptr, 0, nullptr, 0) != UNZ_OK)
             throw_input_error(path, "the archive's list of files is damaged", kFix);
-        const std::string name = safe_name(raw_name);
+        const std::string name = safe_name(std::string(raw_name, std::min<size_t>(info.size_filename, sizeof raw_name)));
         if (name.empty() || name.back() == '/') continue;  // a folder, or a name outside the archive
         const fs::path target = fs::path(folder) / name;
         std::error_code ec;
