@@ -37,6 +37,10 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     const Vec3 extent = c.bbox_max - c.bbox_min;
     nlohmann::ordered_json j;
     j["kind"] = "mesh";
+    if (input.archive) {
+        j["archive_mesh"] = input.archive->mesh_name();
+        j["archive_other_meshes"] = input.archive->other_meshes();
+    }
     j["vertices"] = c.vertices;
     j["triangles"] = c.triangles;
     j["closed"] = c.closed();
@@ -59,9 +63,17 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
             ? fmt::format("{:.4g} m long, by the file's units ({:g} m per unit)", extent.maxCoeff(), scale)
             : fmt::format("{:.4g} m long: the file has no units, and shatter run makes it that long ({:.6g} m per "
                           "unit; --size or --scale sets another)", extent.maxCoeff(), scale);
-    *text = fmt::format("kind          mesh\nmesh          {}\nsize          {}\nup            {}\nmeshing       {}\n"
+    std::string archive;
+    if (input.archive) {
+        archive = fmt::format("archive       {} in it is read", input.archive->mesh_name());
+        if (const auto& others = input.archive->other_meshes(); !others.empty())
+            archive += fmt::format(" (of {} mesh files: glTF, then FBX, Collada, OBJ, 3DS; nearest the top; the largest)",
+                                   others.size() + 1);
+        archive += "\n";
+    }
+    *text = fmt::format("kind          mesh\n{}mesh          {}\nsize          {}\nup            {}\nmeshing       {}\n"
                         "appearance    {}\n",
-                        describe(c), size,
+                        archive, describe(c), size,
                         turned ? "the file's +z, turned to +y (" + z_up_format(input.path, input.loaded.states_z_up) + "; [mesh] up = \"y\" keeps its axes)"
                                : std::string("the file's +y ([mesh] up = \"z\" turns a z-up file to stand)"),
                         as_is ? "as it is (Mesh_3 fills it with tets)" : "alpha-wrapped first: " + why,

@@ -135,6 +135,18 @@ TEST(InfoCommand, AMeshIsDescribedAsShatterRunTakesIt) {
     EXPECT_NE(r.out.find("warning       "), std::string::npos) << r.out;
 }
 
+// A model site's download, zipped: `shatter info` names the mesh it reads in the archive (its glTF
+// before the OBJ under source/), and describes that mesh.
+TEST(InfoCommand, AnArchiveNamesTheMeshItReads) {
+    const auto r = run_shatter({"info", SHATTER_SOURCE_DIR "/tests/fixtures/archive/textured_cube.zip", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["archive_mesh"], "scene.gltf");
+    EXPECT_EQ(j["archive_other_meshes"], nlohmann::json::array({"source/textured_cube.obj"}));
+    EXPECT_EQ(j["triangles"], 12);
+    EXPECT_EQ(j["shows_only_its_shape"], false);
+}
+
 // An STL file is read z-up and stood up: a box 1 unit tall along the file's z is tall along y, and
 // prescore says why; up = "y" keeps the file's axes. (A box of 0.2 x 0.4 x 1 units as 12 facets.)
 TEST(PrescoreCommand, AnStlFileStandsUpAndUpYKeepsItsAxes) {
