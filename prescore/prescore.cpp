@@ -345,8 +345,9 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
         if (!in.archive) throw;
         // The message names the archive and the file in it, not the temporary folder it was unpacked to.
         std::string message = e.what();
-        for (size_t at = message.find(in.path); at != std::string::npos; at = message.find(in.path))
-            message.replace(at, in.path.size(), fmt::format("{} (its {})", settings.path, in.archive->mesh_name()));
+        const std::string named = fmt::format("{} (its {})", settings.path, in.archive->mesh_name());
+        for (size_t at = message.find(in.path); at != std::string::npos; at = message.find(in.path, at + named.size()))
+            message.replace(at, in.path.size(), named);
         throw Error(e.code(), message);
     }
     LoadedMesh& loaded = in.loaded;
