@@ -55,7 +55,7 @@ RunCommand add_run_command(CLI::App& root) {
                ".glb and report.html, into one output folder. Stages that are up to date are skipped; a killed run resumes.");
     c->add_option("shot", f->options.shot,
                   "the shot file (.toml; docs/shot.md), or a mesh file in any format assimp reads (OBJ, PLY, STL, OFF, "
-                  "glTF/GLB, 3DS, FBX, ...), or a ZIP archive holding one (a model site's download), to run the "
+                  "glTF/GLB, 3DS, FBX, ...), or an archive holding one (.zip, .7z, .rar, .tar.gz: a model site's download), to run the "
                   "default shot on it (a 1.5 m drop, docs/shot.md)")
         ->required();
     c->add_option("-o,--output", f->options.output_dir, option_help("the output folder", "", "out/SHOT-NAME"));

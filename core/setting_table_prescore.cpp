@@ -74,7 +74,7 @@ void read_end_size(TomlSection& s, Shot& shot) {
 
 SettingsSection mesh_section() {
     return {"mesh",
-            {custom("path", "", "(required)", "", "the mesh file, or a ZIP archive holding one; relative to the shot file's folder", read_mesh_path)
+            {custom("path", "", "(required)", "", "the mesh file, or an archive holding one (.zip, .7z, .rar, .tar.gz); relative to the shot file's folder", read_mesh_path)
                  .json([](const Shot& s, ojson& j) { j["path"] = s.mesh.path; }),
              optional_number("scale", "m per mesh unit", at(&Shot::mesh, &MeshSettings::scale), kScaleLimits,
                              "multiplies every coordinate", "(the file's units)", Unset::Auto)

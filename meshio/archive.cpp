@@ -3,16 +3,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <tuple>
 #include <utility>
 
+#include <archive.h>
+#include <archive_entry.h>
 #include <assimp/Importer.hpp>
 #include <fmt/format.h>
-#include <minizip/unzip.h>
-#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "meshio/mesh_load.h"
@@ -45,22 +46,40 @@ std::string safe_name(std::string name) {
     return name;
 }
 
-struct Unzip {
-    unzFile file = nullptr;
-    ~Unzip() {
-        if (file) unzClose(file);
+// The archive formats read, by the file name's ending.
+bool archive_name(const std::string& path) {
+    std::string name = fs::path(path).filename().string();
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* end : {".zip", ".7z", ".rar", ".tar", ".tar.gz", ".tgz", ".tar.bz2", ".tar.xz", ".txz"}) {
+        const std::string e = end;
+        if (name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0) return true;
     }
+    return false;
+}
+
+struct Reader {
+    archive* a = archive_read_new();
+    ~Reader() { archive_read_free(a); }
 };
 
 }  // namespace
 
 std::optional<MeshArchive> MeshArchive::open(const std::string& path) {
-    if (lower_extension(path) != ".zip") return std::nullopt;
-    if (read_file_head(path, 4) != std::string("PK\x03\x04", 4))
-        throw_input_error(path, "is named .zip but is not a ZIP archive (its first bytes)", kFix);
-    Unzip zip;
-    zip.file = unzOpen64(path.c_str());
-    if (!zip.file) throw_input_error(path, "cannot read the ZIP archive", kFix);
+    if (!archive_name(path)) return std::nullopt;
+    Reader reader;
+    archive* in = reader.a;
+    // These formats only (libarchive reads many more, some of which name other files on disk).
+    archive_read_support_format_zip(in);
+    archive_read_support_format_7zip(in);
+    archive_read_support_format_rar(in);
+    archive_read_support_format_rar5(in);
+    archive_read_support_format_tar(in);
+    archive_read_support_filter_gzip(in);
+    archive_read_support_filter_bzip2(in);
+    archive_read_support_filter_xz(in);
+    const auto why = [in] { return std::string(archive_error_string(in) ? archive_error_string(in) : "unknown error"); };
+    if (archive_read_open_filename(in, path.c_str(), 1 << 16) != ARCHIVE_OK)
+        throw_input_error(path, "cannot read the archive (" + why() + ")", kFix);
     MeshArchive a;
     std::string folder = (fs::temp_directory_path() / "shatter-archive-XXXXXX").string();
     if (!mkdtemp(folder.data())) throw_io_error(folder, "cannot make a temporary folder to unpack the archive into");
@@ -76,39 +95,38 @@ std::optional<MeshArchive> MeshArchive::open(const std::string& path) {
     uint64_t total = 0;
     size_t entries = 0;
     std::vector<char> buffer(1 << 16);
-    for (int status = unzGoToFirstFile(zip.file); status == UNZ_OK; status = unzGoToNextFile(zip.file)) {
+    archive_entry* entry = nullptr;
+    int status = ARCHIVE_OK;
+    while ((status = archive_read_next_header(in, &entry)) == ARCHIVE_OK || status == ARCHIVE_WARN) {
         if (++entries > kMaxArchiveEntries)
             throw_input_error(path, fmt::format("the archive holds more than {} files", kMaxArchiveEntries), kFix);
-        unz_file_info64 info;
-        char raw_name[4096];
-        if (unzGetCurrentFileInfo64(zip.file, &info, raw_name, sizeof raw_name, nullptr, 0, nullptr, 0) != UNZ_OK)
-            throw_input_error(path, "the archive's list of files is damaged", kFix);
-        const std::string name = safe_name(std::string(raw_name, std::min<size_t>(info.size_filename, sizeof raw_name)));
-        if (name.empty() || name.back() == '/') continue;  // a folder, or a name outside the archive
+        const char* raw_name = archive_entry_pathname(entry);
+        // Regular files only (folders are made as needed; links and devices are skipped).
+        if (archive_entry_filetype(entry) != AE_IFREG || !raw_name) continue;
+        const std::string name = safe_name(raw_name);
+        if (name.empty() || name.back() == '/') continue;  // a name outside the folder
         const fs::path target = fs::path(folder) / name;
         std::error_code ec;
         fs::create_directories(target.parent_path(), ec);
         // A name an earlier entry took as a folder, or under an earlier file's name: skipped.
         if (ec || !fs::is_directory(target.parent_path()) || fs::is_directory(target)) continue;
-        if (unzOpenCurrentFile(zip.file) != UNZ_OK)
-            throw_input_error(path, fmt::format("its entry '{}' cannot be unpacked (encrypted, or a method ZIP readers "
-                                                "rarely know)", name), kFix);
         std::ofstream out(target, std::ios::binary);
         uint64_t bytes = 0;
-        int n = 0;
-        while ((n = unzReadCurrentFile(zip.file, buffer.data(), unsigned(buffer.size()))) > 0) {
+        la_ssize_t n = 0;
+        while ((n = archive_read_data(in, buffer.data(), buffer.size())) > 0) {
             bytes += uint64_t(n);
             total += uint64_t(n);
             if (total > kMaxArchiveBytes)
                 throw_input_error(path, fmt::format("the archive unpacks to more than {} GB", kMaxArchiveBytes >> 30), kFix);
-            out.write(buffer.data(), n);
+            out.write(buffer.data(), std::streamsize(n));
         }
-        unzCloseCurrentFile(zip.file);
-        if (n < 0) throw_input_error(path, fmt::format("its entry '{}' is damaged (unzip error {})", name, n), kFix);
+        if (n < 0)
+            throw_input_error(path, fmt::format("its entry '{}' cannot be unpacked ({})", name, why()), kFix);
         if (!out) throw_io_error(target.string(), "cannot write the unpacked file");
         if (const int rank = format_rank(name); rank >= 0)
             meshes.push_back({rank, size_t(std::distance(fs::path(name).begin(), fs::path(name).end())), bytes, name});
     }
+    if (status != ARCHIVE_EOF) throw_input_error(path, "the archive is damaged (" + why() + ")", kFix);
     if (meshes.empty())
         throw_input_error(path, "the archive holds no mesh file assimp reads",
                           "check that it is the model's download (glTF, FBX, OBJ, ...), or unpack it and give shatter "

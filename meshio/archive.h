@@ -1,5 +1,7 @@
-// A mesh that comes in a ZIP archive, as model sites hand them out (Sketchfab's "glTF" download:
-// scene.gltf, scene.bin and textures/ in one .zip; others zip an OBJ with its .mtl and images).
+// A mesh that comes in an archive, as model sites hand them out (Sketchfab's "glTF" download:
+// scene.gltf, scene.bin and textures/ in one .zip; others pack an OBJ with its .mtl and images as
+// .zip, .rar or .7z). ZIP, 7z, RAR (4 and 5) and tar (plain, gzip, bzip2, xz) are read, by
+// libarchive, by the file name's ending.
 // The archive is unpacked into a temporary folder that lives as long as the MeshArchive, and one
 // mesh file in it is chosen: the format most likely to carry the model whole (glTF, then FBX,
 // Collada, OBJ, 3DS, then any other file assimp reads), then the one nearest the archive's top,
@@ -15,11 +17,12 @@ namespace shatter {
 
 class MeshArchive {
 public:
-    // nullopt when `path` is not a .zip file (formats that are ZIP archives inside, 3MF, Collada's
-    // .zae, USDZ, are the mesh reader's to take or refuse). Throws Error(BadInput) naming
-    // the archive when it cannot be read, holds no mesh file, or unpacks past kMaxArchiveBytes or
-    // kMaxArchiveEntries; entries whose names would leave the folder ("..", absolute), or clash with
-// an earlier entry's (a file where a folder was, or the other way round), are skipped.
+    // nullopt when `path` is not named as one of those archives (formats that are ZIP archives
+    // inside, 3MF, Collada's .zae, USDZ, are the mesh reader's to take or refuse). Throws
+    // Error(BadInput) naming the archive when it cannot be read, holds no mesh file, or unpacks
+    // past kMaxArchiveBytes or kMaxArchiveEntries; links, and entries whose names would leave the
+    // folder ("..", absolute) or clash with an earlier entry's (a file where a folder was, or the
+    // other way round), are skipped.
     static std::optional<MeshArchive> open(const std::string& path);
 
     const std::string& mesh_path() const { return mesh_; }  // the chosen mesh, in the unpacked folder

@@ -18,8 +18,8 @@ PACKAGES=(
   libosmesa6-dev libpng-dev zlib1g-dev
   # textures: PNG, JPEG and TGA decoding (stb_image), WebP (glTF's EXT_texture_webp)
   libstb-dev libwebp-dev
-  # meshes in a ZIP archive (minizip)
-  libminizip-dev
+  # meshes in an archive: ZIP, 7z, RAR, tar (libarchive)
+  libarchive-dev
   # core: logging, CLI, shot files, JSON
   libspdlog-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   # tests

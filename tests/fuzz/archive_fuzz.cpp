@@ -1,5 +1,5 @@
-// libFuzzer target: the ZIP archive reader in front of the mesh reader (meshio/archive.h: the
-// archive's list of files, names that would leave the unpacked folder or clash, damaged and
+// libFuzzer target: the archive reader in front of the mesh reader (meshio/archive.h, libarchive's
+// ZIP, 7z, RAR and tar readers as a .zip name selects them: the archive's list of files, names that would leave the unpacked folder or clash, damaged and
 // encrypted entries, the limits on what it unpacks). Input: a .zip file. Seeds:
 // tests/fuzz/corpus/archive/ (a model site's glTF download of a cube, an archive whose names try
 // to leave the folder).

@@ -1,4 +1,4 @@
-// Meshes in a ZIP archive (meshio/archive.h): the archive is unpacked into a temporary folder that
+// Meshes in an archive (meshio/archive.h): the archive is unpacked into a temporary folder that
 // goes with the MeshArchive, its likeliest mesh is chosen (glTF before OBJ), the files beside it
 // (textures, the .bin) are where it names them, and entries that would leave the folder are
 // never written.
@@ -20,11 +20,15 @@ namespace fs = std::filesystem;
 const std::string kFixtures = SHATTER_SOURCE_DIR "/tests/fixtures/";
 
 // A model site's glTF download (scene.gltf, scene.bin, textures/) with the OBJ it came from under
-// source/: the glTF is read, textured, and the folder is gone with the archive.
-TEST(MeshArchive, ChoosesTheGltfOfADownloadAndItsFilesAreBesideIt) {
+// source/, zipped and as a .tar.gz: the glTF is read, textured, and the folder is gone with the
+// archive.
+class Downloads : public testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(MeshArchive, Downloads, testing::Values("textured_cube.zip", "textured_cube.tar.gz"));
+
+TEST_P(Downloads, TheGltfIsChosenAndItsFilesAreBesideIt) {
     fs::path folder;
     {
-        std::optional<MeshArchive> a = MeshArchive::open(kFixtures + "archive/textured_cube.zip");
+        std::optional<MeshArchive> a = MeshArchive::open(kFixtures + "archive/" + GetParam());
         ASSERT_TRUE(a.has_value());
         EXPECT_EQ(a->mesh_name(), "scene.gltf");
         ASSERT_EQ(a->other_meshes().size(), 1u);
