@@ -53,6 +53,11 @@ void read_mesh_path(TomlSection& s, Shot& shot) {
     }
 }
 
+void read_mesh_member(TomlSection& s, Shot& shot) {
+    if (s.text("member", shot.mesh.member) && shot.mesh.member.empty())
+        s.fail(s.node("member"), "mesh.member is empty", "name a file in the archive, e.g. member = \"scene.gltf\", or leave member out");
+}
+
 void read_generate_kind(TomlSection& s, Shot& shot) {
     std::string text;
     if (!s.text("kind", text)) s.fail(nullptr, "[generate] has no kind", "add kind = \"beam\", \"plate\" or \"chain\"");
@@ -76,6 +81,12 @@ SettingsSection mesh_section() {
     return {"mesh",
             {custom("path", "", "(required)", "", "the mesh file, or an archive holding one (.zip, .7z, .rar, .tar.gz); relative to the shot file's folder", read_mesh_path)
                  .json([](const Shot& s, ojson& j) { j["path"] = s.mesh.path; }),
+             custom("member", "", "(chosen)", "", "the mesh file to read in an archive, by its name in it (e.g. "
+                    "\"models/chair.obj\"); unset: the likeliest (meshio/archive.h: glTF, then FBX, Collada, OBJ, 3DS; "
+                    "nearest the top; the largest)", read_mesh_member)
+                 .json([](const Shot& s, ojson& j) {
+                     if (!s.mesh.member.empty()) j["member"] = s.mesh.member;
+                 }),
              optional_number("scale", "m per mesh unit", at(&Shot::mesh, &MeshSettings::scale), kScaleLimits,
                              "multiplies every coordinate", "(the file's units)", Unset::Auto)
                  .flag("--scale"),

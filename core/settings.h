@@ -48,6 +48,7 @@ const char* to_string(UpAxis up);
 // units (OBJ, STL, PLY, OFF, ...) the object is made kDefaultSize long.
 struct MeshSettings {
     std::string path;                    // the mesh file; in a shot, relative to the shot's folder
+    std::string member;                  // the mesh file in the archive `path` names; "": chosen (meshio/archive.h)
     std::optional<double> scale;         // metres per mesh unit (unit: m); unset: from the file or size
     std::optional<double> size;          // the longest side of the bounding box (unit: m); unset: scale
     RepairMode repair = RepairMode::Auto;  // auto: alpha-wrap only meshes Mesh_3 cannot take

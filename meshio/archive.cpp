@@ -64,7 +64,7 @@ struct Reader {
 
 }  // namespace
 
-std::optional<MeshArchive> MeshArchive::open(const std::string& path) {
+std::optional<MeshArchive> MeshArchive::open(const std::string& path, const std::string& member) {
     if (!archive_name(path)) return std::nullopt;
     Reader reader;
     archive* in = reader.a;
@@ -135,6 +135,16 @@ std::optional<MeshArchive> MeshArchive::open(const std::string& path) {
         return std::make_tuple(x.rank, x.depth, -int64_t(x.bytes), x.name) <
                std::make_tuple(y.rank, y.depth, -int64_t(y.bytes), y.name);
     });
+    if (!member.empty()) {
+        const auto it = std::find_if(meshes.begin(), meshes.end(), [&](const Candidate& c) { return c.name == member; });
+        if (it == meshes.end()) {
+            std::string names;
+            for (const Candidate& c : meshes) names += (names.empty() ? "" : ", ") + c.name;
+            throw_input_error(path, fmt::format("mesh.member = \"{}\" is no mesh file in the archive", member),
+                              "use one of its mesh files: " + names);
+        }
+        std::rotate(meshes.begin(), it, it + 1);  // first, the others in their order
+    }
     a.name_ = meshes.front().name;
     a.mesh_ = (fs::path(folder) / a.name_).string();
     for (size_t i = 1; i < meshes.size(); ++i) a.others_.push_back(meshes[i].name);

@@ -23,7 +23,9 @@ public:
     // past kMaxArchiveBytes or kMaxArchiveEntries; links, and entries whose names would leave the
     // folder ("..", absolute) or clash with an earlier entry's (a file where a folder was, or the
     // other way round), are skipped.
-    static std::optional<MeshArchive> open(const std::string& path);
+    // `member`: the mesh file to read, by its name in the archive (BadInput, listing the archive's
+    // mesh files, when it is not there); "": the likeliest.
+    static std::optional<MeshArchive> open(const std::string& path, const std::string& member = "");
 
     const std::string& mesh_path() const { return mesh_; }  // the chosen mesh, in the unpacked folder
     const std::string& mesh_name() const { return name_; }  // its name inside the archive

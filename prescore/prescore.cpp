@@ -325,12 +325,14 @@ void add_appearance(Model& model, const std::string& path, double scale, bool tu
 InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
     InputMesh in;
     in.path = settings.path;
-    if (std::optional<MeshArchive> archive = MeshArchive::open(settings.path)) {
+    if (std::optional<MeshArchive> archive = MeshArchive::open(settings.path, settings.member)) {
         in.archive = std::make_shared<const MeshArchive>(std::move(*archive));
         in.path = in.archive->mesh_path();
         const std::vector<std::string>& others = in.archive->other_meshes();
         std::string why = "the one mesh file in it";
-        if (!others.empty()) {
+        if (!settings.member.empty()) {
+            why = "[mesh] member";
+        } else if (!others.empty()) {
             why = fmt::format("of its {} mesh files the likeliest to hold the model whole (glTF, then FBX, Collada, OBJ, "
                               "3DS; nearest the top; the largest); the others:",
                               others.size() + 1);
@@ -338,6 +340,10 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
             if (others.size() > 5) why += fmt::format(" and {} more", others.size() - 5);
         }
         choices.note(fmt::format("mesh: {} from the archive", in.archive->mesh_name()), why);
+    } else if (!settings.member.empty()) {
+        throw_input_error(settings.path, fmt::format("mesh.member = \"{}\" names a file in an archive, and this is no "
+                                                     "archive (.zip, .7z, .rar, .tar.gz)", settings.member),
+                          "remove member, or give the archive as the mesh path");
     }
     try {
         in.loaded = load_mesh_file(in.path);

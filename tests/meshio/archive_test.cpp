@@ -49,6 +49,24 @@ TEST_P(Downloads, TheGltfIsChosenAndItsFilesAreBesideIt) {
     EXPECT_FALSE(fs::exists(folder));
 }
 
+// [mesh] member picks another mesh in the archive; one it does not hold is refused with the list.
+TEST(MeshArchive, AMemberNamedIsReadAndOneNotThereIsRefused) {
+    const std::string zip = kFixtures + "archive/textured_cube.zip";
+    const std::optional<MeshArchive> a = MeshArchive::open(zip, "source/textured_cube.obj");
+    ASSERT_TRUE(a.has_value());
+    EXPECT_EQ(a->mesh_name(), "source/textured_cube.obj");
+    EXPECT_EQ(a->other_meshes(), std::vector<std::string>{"scene.gltf"});
+    EXPECT_EQ(load_mesh_file(a->mesh_path()).mesh.triangles.size(), 12u);
+    try {
+        (void)MeshArchive::open(zip, "chair.obj");
+        ADD_FAILURE() << "a member the archive does not hold was taken";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("use one of its mesh files: scene.gltf, source/textured_cube.obj"),
+                  std::string::npos) << e.what();
+    }
+}
+
 TEST(MeshArchive, AFileThatIsNoArchiveIsReadAsItIs) {
     EXPECT_FALSE(MeshArchive::open(kFixtures + "gltfpack/textured_cube.obj").has_value());
 }
