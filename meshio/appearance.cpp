@@ -34,10 +34,6 @@ Mat4 to_eigen(const aiMatrix4x4& m) {
     return r;
 }
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
 
 constexpr int kTextureFolderUp = 3;  // folders above the mesh file's searched for a texture's written path
 
@@ -50,7 +46,7 @@ std::vector<std::string> files_named(const std::filesystem::path& dir, const std
     for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
         if (entry.is_directory(ec)) {
             if (folders) folders->push_back(entry.path().string());
-        } else if (lower(entry.path().filename().string()) == wanted && entry.is_regular_file(ec)) {
+        } else if (lower_case(entry.path().filename().string()) == wanted && entry.is_regular_file(ec)) {
             found.push_back(entry.path().string());
         }
     }
@@ -72,7 +68,7 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::error_code ec;
     for (const std::filesystem::path& p : {dir / name, std::filesystem::path(name), dir / bare})
         if (std::filesystem::is_regular_file(p, ec)) return p.string();
-    const std::string wanted = lower(bare.string());
+    const std::string wanted = lower_case(bare.string());
     std::vector<std::string> folders;
     std::vector<std::string> found = files_named(dir.empty() ? "." : dir, wanted, &folders);
     std::sort(folders.begin(), folders.end());
@@ -307,7 +303,7 @@ std::string image_mime(const std::string& bytes, const std::string& name) {
     if (bytes.size() >= 3 && uint8_t(bytes[0]) == 0xFF && uint8_t(bytes[1]) == 0xD8 && uint8_t(bytes[2]) == 0xFF)
         return "image/jpeg";
     if (bytes.size() >= 12 && bytes.compare(0, 4, "RIFF") == 0 && bytes.compare(8, 4, "WEBP") == 0) return "image/webp";
-    const std::string ext = lower(std::filesystem::path(name).extension().string());
+    const std::string ext = lower_extension(name);
     if (ext == ".tga") return "image/x-tga";
     if (ext == ".bmp") return "image/bmp";
     if (ext == ".png") return "image/png";

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -48,8 +47,7 @@ std::string safe_name(std::string name) {
 
 // The archive formats read, by the file name's ending.
 bool archive_name(const std::string& path) {
-    std::string name = fs::path(path).filename().string();
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string name = lower_case(fs::path(path).filename().string());
     for (const char* end : {".zip", ".7z", ".rar", ".tar", ".tar.gz", ".tgz", ".tar.bz2", ".tar.xz", ".txz"}) {
         const std::string e = end;
         if (name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0) return true;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <filesystem>
 #include <string_view>
 
@@ -14,12 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
-
-std::string read_lower(const fs::path& path, size_t limit) { return lower(read_file_head(path.string(), limit)); }
+std::string read_lower(const fs::path& path, size_t limit) { return lower_case(read_file_head(path.string(), limit)); }
 
 bool companion_extension(const std::string& ext) {
     static constexpr std::array<std::string_view, 20> kExtensions = {
@@ -39,7 +33,7 @@ std::vector<std::string> companion_files(const std::string& mesh_path) {
          !ec && it != end && candidates.size() < kCompanionCandidates; it.increment(ec)) {
         if (it.depth() >= 2) it.disable_recursion_pending();
         if (!it->is_regular_file(ec) || fs::equivalent(it->path(), mesh, ec)) continue;
-        if (companion_extension(lower(it->path().extension().string()))) candidates.push_back(it->path());
+        if (companion_extension(lower_extension(it->path().string()))) candidates.push_back(it->path());
     }
     std::sort(candidates.begin(), candidates.end());
     std::string text = read_lower(mesh, kCompanionSearchBytes);
@@ -49,10 +43,10 @@ std::vector<std::string> companion_files(const std::string& mesh_path) {
     for (int pass = 0; pass < 2; ++pass) {
         std::string more;
         for (size_t i = 0; i < candidates.size(); ++i) {
-            if (taken[i] || text.find(lower(candidates[i].filename().string())) == std::string::npos) continue;
+            if (taken[i] || text.find(lower_case(candidates[i].filename().string())) == std::string::npos) continue;
             taken[i] = 1;
             found.push_back(fs::relative(candidates[i], dir, ec).generic_string());
-            if (lower(candidates[i].extension().string()) == ".mtl") more += read_lower(candidates[i], kCompanionSearchBytes);
+            if (lower_extension(candidates[i].string()) == ".mtl") more += read_lower(candidates[i], kCompanionSearchBytes);
         }
         if (more.empty()) break;
         text = std::move(more);

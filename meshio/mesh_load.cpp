@@ -436,11 +436,12 @@ LoadedMesh load_mesh_file(const std::string& path) {
     return import_isolated(path);
 }
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
+std::string lower_case(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
 }
+
+std::string lower_extension(const std::string& path) { return lower_case(std::filesystem::path(path).extension().string()); }
 
 bool z_up(UpAxis up, const std::string& path, bool states_z_up) {
     if (up != UpAxis::Auto) return up == UpAxis::Z;

@@ -79,6 +79,9 @@ double mesh_import_deadline_seconds(const std::string& path);
 // The first `bytes` of a file (fewer if it is shorter; empty if it cannot be read).
 std::string read_file_head(const std::string& path, size_t bytes);
 
+// `s` with its ASCII letters in lower case.
+std::string lower_case(std::string s);
+
 // The file name's extension in lower case, with its dot (".glb"); "" without one.
 std::string lower_extension(const std::string& path);
 
