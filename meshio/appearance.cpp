@@ -21,6 +21,7 @@
 #include "core/model_io.h"
 #include "core/utf8.h"
 #include "meshio/gltf_extensions.h"
+#include "meshio/image_decode.h"
 #include "meshio/mesh_load.h"
 
 namespace shatter {
@@ -302,7 +303,7 @@ std::string image_mime(const std::string& bytes, const std::string& name) {
     if (bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return "image/png";
     if (bytes.size() >= 3 && uint8_t(bytes[0]) == 0xFF && uint8_t(bytes[1]) == 0xD8 && uint8_t(bytes[2]) == 0xFF)
         return "image/jpeg";
-    if (bytes.size() >= 12 && bytes.compare(0, 4, "RIFF") == 0 && bytes.compare(8, 4, "WEBP") == 0) return "image/webp";
+    if (is_webp(bytes)) return "image/webp";
     const std::string ext = lower_extension(name);
     if (ext == ".tga") return "image/x-tga";
     if (ext == ".bmp") return "image/bmp";

@@ -13,11 +13,7 @@ float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c 
 
 constexpr int kMaxImageSide = 16384;  // WebP's own limit is 16383
 
-// A WebP image (RIFF....WEBP), which stb_image does not read, by libwebp.
-bool is_webp(const std::string& bytes) {
-    return bytes.size() >= 12 && bytes.compare(0, 4, "RIFF") == 0 && bytes.compare(8, 4, "WEBP") == 0;
-}
-
+// A WebP image, which stb_image does not read, by libwebp.
 std::optional<DecodedImage> decode_webp(const std::string& bytes, std::string* why) {
     const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
     int w = 0, h = 0;
@@ -41,6 +37,10 @@ std::optional<DecodedImage> decode_webp(const std::string& bytes, std::string* w
 }
 
 }  // namespace
+
+bool is_webp(const std::string& bytes) {
+    return bytes.size() >= 12 && bytes.compare(0, 4, "RIFF") == 0 && bytes.compare(8, 4, "WEBP") == 0;
+}
 
 const uint8_t* DecodedImage::at(float u, float v) const {
     auto wrap = [](float x, uint32_t n) {

@@ -22,6 +22,9 @@ struct DecodedImage {
     const uint8_t* at(float u, float v) const;
 };
 
+// Whether the bytes begin as a WebP file does (RIFF....WEBP).
+bool is_webp(const std::string& bytes);
+
 // nullopt, with `why` set, when the bytes are not an image stb_image or libwebp reads (or a WebP
 // over 16384 pixels on a side).
 std::optional<DecodedImage> decode_image(const std::string& bytes, std::string* why);
