@@ -120,13 +120,6 @@ const json* base_colour_transform(const json& material) {
     return &info["extensions"]["KHR_texture_transform"];
 }
 
-bool transforms_base_colour(const json& doc) {
-    if (!doc.contains("materials") || !doc["materials"].is_array()) return false;
-    for (const json& m : doc["materials"])
-        if (base_colour_transform(m)) return true;
-    return false;
-}
-
 // The image a texture names through one of the extensions assimp 5.2 does not know, or nullptr:
 // EXT_texture_webp's (a WebP image, read here), or KHR_texture_basisu's when the texture has no
 // other (a KTX2 image, which the appearance reader then names in a warning instead of dropping
@@ -151,17 +144,11 @@ const json* instancing(const json& node) {
     return ext.is_object() && ext.contains("attributes") && ext["attributes"].is_object() ? &ext : nullptr;
 }
 
-bool has_instancing(const json& doc) {
-    if (!doc.contains("nodes") || !doc["nodes"].is_array()) return false;
-    for (const json& n : doc["nodes"])
-        if (instancing(n)) return true;
-    return false;
-}
-
-bool has_extension_images(const json& doc) {
-    if (!doc.contains("textures") || !doc["textures"].is_array()) return false;
-    for (const json& t : doc["textures"])
-        if (extension_source(t)) return true;
+// Whether an element of the document's array `key` has what `find` looks for.
+bool any_in(const json& doc, const char* key, const json* (*find)(const json&)) {
+    if (!doc.contains(key) || !doc[key].is_array()) return false;
+    for (const json& e : doc[key])
+        if (find(e)) return true;
     return false;
 }
 
@@ -657,7 +644,8 @@ std::optional<std::string> plain_glb(const std::string& path) {
     const GltfFile probe = read_gltf(path, false);
     if (!probe.ok) return std::nullopt;
     const bool unreadable = !first_unreadable(probe.doc).empty();
-    if (!unreadable && !transforms_base_colour(probe.doc) && !has_extension_images(probe.doc) && !has_instancing(probe.doc))
+    if (!unreadable && !any_in(probe.doc, "materials", base_colour_transform) &&
+        !any_in(probe.doc, "textures", extension_source) && !any_in(probe.doc, "nodes", instancing))
         return std::nullopt;
     GltfFile f = read_gltf(path, true);
     try {
