@@ -67,8 +67,7 @@ nlohmann::ordered_json mesh_summary(const std::string& path, std::string* text) 
     if (input.archive) {
         archive = fmt::format("archive       {} in it is read", input.archive->mesh_name());
         if (const auto& others = input.archive->other_meshes(); !others.empty())
-            archive += fmt::format(" (of {} mesh files: glTF, then FBX, Collada, OBJ, 3DS; nearest the top; the largest)",
-                                   others.size() + 1);
+            archive += fmt::format(" (of {} mesh files: {})", others.size() + 1, kArchiveChoice);
         archive += "\n";
     }
     *text = fmt::format("kind          mesh\n{}mesh          {}\nsize          {}\nup            {}\nmeshing       {}\n"

@@ -44,6 +44,9 @@ private:
     std::vector<std::string> others_;
 };
 
+// How the mesh is chosen, for the messages that say so.
+inline constexpr const char* kArchiveChoice = "glTF, then FBX, Collada, OBJ, 3DS; nearest the top; the largest";
+
 inline constexpr unsigned long long kMaxArchiveBytes = 4ull << 30;  // unpacked, in all
 inline constexpr size_t kMaxArchiveEntries = 100000;
 

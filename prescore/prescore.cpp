@@ -333,9 +333,8 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
         if (!settings.member.empty()) {
             why = "[mesh] member";
         } else if (!others.empty()) {
-            why = fmt::format("of its {} mesh files the likeliest to hold the model whole (glTF, then FBX, Collada, OBJ, "
-                              "3DS; nearest the top; the largest); the others:",
-                              others.size() + 1);
+            why = fmt::format("of its {} mesh files the likeliest to hold the model whole ({}); the others:",
+                              others.size() + 1, kArchiveChoice);
             for (size_t i = 0; i < others.size() && i < 5; ++i) why += (i ? ", " : " ") + others[i];
             if (others.size() > 5) why += fmt::format(" and {} more", others.size() - 5);
         }
