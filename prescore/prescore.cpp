@@ -196,8 +196,16 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                         model.pieces.size(), triangles, work / 1e6, kRenderSurfaceWork / 1e6, kRenderSurfaceWork * 2e-6));
         return true;
     };
-    const size_t at_most = std::min(from->triangles.size(), kRenderSurfaceTriangles);
+    // Many pieces: the surface is simplified further, to what the cut's budget allows for them.
+    const size_t at_most = render_surface_triangles(model.pieces.size(), from->triangles.size());
     if (over_budget(at_most)) return;
+    if (at_most < std::min(from->triangles.size(), kRenderSurfaceTriangles))
+        report.choices.note(fmt::format("render surfaces: the surface simplified to {} triangles", at_most),
+                            fmt::format("{} pieces are each cut from the whole surface, within a budget of {:.3g} "
+                                        "million pieces x triangles (about {:.0f} s); at most {} pieces keep {} "
+                                        "triangles; [prescore] render_surface = false draws the tet surfaces instead",
+                                        model.pieces.size(), kRenderSurfaceWork / 1e6, kRenderSurfaceWork * 2e-6,
+                                        size_t(kRenderSurfaceWork) / kRenderSurfaceTriangles, kRenderSurfaceTriangles));
     // CGAL's simplification and corefinement in a child process (core/isolated.h): a crash or a
     // cut past its deadline leaves the pieces their tet surfaces instead of ending prescore. The
     // child sends back six counts (the simplified surface's triangles; use_input_faces' four; the
@@ -213,7 +221,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                                 (own ? 1e-6 * double(own->triangles.size()) : 0.0);
         const std::string bytes = run_isolated(
             [&] {
-                const TriangleMesh cut = simplify_surface(*from, kRenderSurfaceTriangles);
+                const TriangleMesh cut = simplify_surface(*from, at_most);
                 std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
                 const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
                 if (double(model.pieces.size()) * double(h[0]) > kRenderSurfaceWork) return reply();

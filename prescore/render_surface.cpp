@@ -80,6 +80,13 @@ std::optional<TriangleMesh> first_reduction(const TriangleMesh& surface) {
     return reduce_surface(surface, kRenderSurfaceReduced);
 }
 
+size_t render_surface_triangles(size_t pieces, size_t surface_triangles) {
+    const size_t most = std::min(surface_triangles, kRenderSurfaceTriangles);
+    const double fits = pieces > 0 ? kRenderSurfaceWork / double(pieces) : double(most);
+    if (fits >= double(most)) return most;
+    return std::max(size_t(fits), std::min(most, kRenderSurfaceFewest));
+}
+
 RenderSurface flat_render_surface(const PieceSurface& surface) {
     RenderSurface out;
     out.fell_back = true;

@@ -35,8 +35,9 @@ namespace shatter {
 // simplified to that many first (edge collapse), so that render keeps its frame rate (llvmpipe
 // pays per triangle, in the shadow and the scene pass). The cut: each piece's cut corefines the
 // whole surface, so its work grows as pieces x surface triangles (measured ~2 us per triangle
-// and piece on the demo: 10 x 69,666 in 1.4 s); beyond kRenderSurfaceWork (about 8 s) the pieces
-// keep their tet surfaces. CGAL's simplification costs ~20 us per triangle removed (2 million
+// and piece on the demo: 10 x 69,666 in 1.4 s): the surface is simplified further for many
+// pieces, to what keeps pieces x triangles within kRenderSurfaceWork (about 8 s), but not below
+// kRenderSurfaceFewest; beyond that the pieces keep their tet surfaces. CGAL's simplification costs ~20 us per triangle removed (2 million
 // to 200,000 triangles: 41 s): a surface over kRenderSurfaceSimplifyLimit is first reduced to
 // kRenderSurfaceReduced by meshoptimizer's (1.3 s for those 2 million), whose touching sheets
 // and crossings simplify_surface mends. The simplification and the cut run in a child process
@@ -47,8 +48,14 @@ inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet size
 inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
 inline constexpr size_t kRenderSurfaceTriangles = 12000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
+inline constexpr size_t kRenderSurfaceFewest = 1000;        // fewest kept for many pieces
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are first reduced (reduce_surface)
 inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many triangles
+
+// The triangles a surface of `surface_triangles` is cut with for `pieces` pieces: at most
+// kRenderSurfaceTriangles, fewer where that many pieces would pass kRenderSurfaceWork, but not
+// fewer than kRenderSurfaceFewest (the work is then over the budget: tet surfaces).
+size_t render_surface_triangles(size_t pieces, size_t surface_triangles);
 
 // `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
 // (Lindstrom-Turk), deterministic. Sheets that touch along an edge or at a vertex get their own

@@ -158,6 +158,51 @@ TEST(RenderSurface, PrescoreMakesNoneWhenTheSettingIsOff) {
     EXPECT_NE(m.settings_json.find("\"render_surface\":false"), std::string::npos) << m.settings_json;
 }
 
+// The surface a cut starts from: kRenderSurfaceTriangles (or fewer when the surface has fewer)
+// up to kRenderSurfaceWork / kRenderSurfaceTriangles pieces; then what keeps pieces x triangles
+// within kRenderSurfaceWork, down to kRenderSurfaceFewest (beyond which the work is over budget).
+TEST(RenderSurface, ManyPiecesGetASurfaceSimplifiedToTheCutsBudget) {
+    EXPECT_EQ(render_surface_triangles(10, 69666), kRenderSurfaceTriangles);
+    EXPECT_EQ(render_surface_triangles(10, 5000), 5000u);
+    EXPECT_EQ(render_surface_triangles(333, 69666), kRenderSurfaceTriangles);  // 3,996,000 <= 4e6
+    EXPECT_EQ(render_surface_triangles(1000, 69666), 4000u);
+    EXPECT_EQ(render_surface_triangles(1000, 3000), 3000u);
+    EXPECT_EQ(render_surface_triangles(4000, 69666), 1000u);
+    EXPECT_EQ(render_surface_triangles(8000, 69666), kRenderSurfaceFewest);  // 8 million: over budget
+    EXPECT_EQ(render_surface_triangles(8000, 600), 600u);                    // 4.8 million: over budget
+    EXPECT_EQ(render_surface_triangles(0, 69666), kRenderSurfaceTriangles);
+}
+
+// 500 pieces of a sphere of 20,480 triangles: each piece is cut from the sphere simplified to
+// 4e6 / 500 = 8,000 triangles (a choice, noted), and still follows the sphere.
+TEST(RenderSurface, FiveHundredPiecesAreCutFromTheSurfaceSimplifiedTo8000Triangles) {
+    testing_support::TempDir dir;
+    MeshSettings mesh;
+    mesh.path = dir.write("sphere.obj", obj(icosphere(5)));
+    mesh.scale = 0.1;
+    PrescoreSettings settings;
+    settings.pieces = 500;
+    settings.resolution = 40;
+    PrescoreReport report;
+    const Model m = prescore(mesh, settings, &report);
+    ASSERT_EQ(m.pieces.size(), 500u);
+    EXPECT_EQ(report.render_surfaces, 500u);
+    bool noted = false;
+    for (const AutoChoice& c : report.choices.list)
+        noted = noted || c.what == "render surfaces: the surface simplified to 8000 triangles";
+    EXPECT_TRUE(noted) << m.settings_json;
+    std::vector<RenderSurface> surfaces;
+    for (const Piece& p : m.pieces)
+        if (p.render) surfaces.push_back(*p.render);
+    TriangleMesh input = load_mesh(mesh.path, 0.1);
+    if (check_mesh(input, false).volume < 0) orient_outward(input);
+    const SurfaceAgreement a = surface_agreement(input, surfaces, 40, 10);
+    // An 8,000-triangle sphere of radius 0.1 m lies within r (1 - cos(edge angle / 2)) ~ 0.05 mm of
+    // the 20,480-triangle one: 0.05% of the diagonal.
+    EXPECT_LE(a.distance_p99, 0.0005 * report.input.diagonal);
+    EXPECT_GE(a.normals_within, 0.95);
+}
+
 // A torus (ring radius R, tube radius r) of 2 nu nv triangles, outward.
 TriangleMesh torus(double R, double r, uint32_t nu, uint32_t nv) {
     TriangleMesh m;
