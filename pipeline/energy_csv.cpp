@@ -77,7 +77,8 @@ EnergySeries parse_energy_csv(const std::string& text, const std::string& path) 
             // injected - driven
             const double integration = columns == kAll ? v[10] : 0.0;
             s.books.push_back(v[1] + v[2] + v[5] + v[6] + v[7] + v[8] + integration - v[4] - v[9]);
-            s.lost.push_back(v[7] + v[8] + integration);
+            s.joints_took.push_back(v[6] + v[7]);
+            s.contacts_took.push_back(v[8] + integration);
             s.driven.push_back(v[9]);
         }
     }

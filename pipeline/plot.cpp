@@ -56,7 +56,8 @@ if len(curves) == 1:
         ax.plot(c["t"], c["elastic"], color="C2", linestyle=":", label="elastic (constraints' stretch)")
     ax.plot(c["t"], c["injected"], color="C3", linestyle="--", label="injected (breaks)")
     if c["books"]:
-        ax.plot(c["t"], c["lost"], color="C4", linestyle=":", label="taken by the joints' damping, contacts and the step's integration")
+        ax.plot(c["t"], c["joints_took"], color="C4", linestyle=":", label="taken by the joints (damping, and the stretch of broken ones)")
+        ax.plot(c["t"], c["contacts_took"], color="C7", linestyle=":", label="taken by contacts and the step's integration")
         if any(d != 0 for d in c["driven"]):
             ax.plot(c["t"], c["driven"], color="C5", linestyle="-.", label="given by driven pieces and props")
         b0 = c["books"][0]
@@ -94,7 +95,8 @@ std::string plot_input(const std::vector<EnergyCurve>& curves, const std::string
                                {"injected", s.injected},
                                {"elastic", s.elastic},
                                {"books", s.books},
-                               {"lost", s.lost},
+                               {"joints_took", s.joints_took},
+                               {"contacts_took", s.contacts_took},
                                {"driven", s.driven}});
     }
     return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "pipeline/energy_csv.h"
 #include "pipeline/plot.h"
 #include "render/png_io.h"
 #include "support/temp_dir.h"
@@ -68,6 +69,25 @@ TEST(Plot, SeveralRunsAndHostileLabelsPlot) {
     const Image img = load_png(tmp.file("sweep.png"));
     EXPECT_EQ(img.width, 800u);
     EXPECT_FALSE(std::filesystem::exists(tmp.file("x")));
+}
+
+// The books' running sums as the plot draws them: the joints' (removed + joints_damped, which at an
+// iterative impact are hundreds of joules apart in opposite directions: the cat's default shot)
+// and the contacts' with the step's integration; the sum of every term.
+TEST(Plot, TheBooksSplitIntoWhatTheJointsTookAndWhatContactsTook) {
+    const EnergySeries s = parse_energy_csv(
+        "time_s,kinetic_J,potential_J,stored_J,injected_J,removed_J,elastic_J,joint_residual,joints_damped_J,"
+        "contacts_J,driven_J,integration_J\n"
+        "0,0,30,0,0,0,0,0,0,0,0,0\n"
+        "0.6,1.4,1.0,0,0.83,352.1,0.5,296,-349.1,24.9,0.25,0.002\n",
+        "cat.energy.csv");
+    ASSERT_EQ(s.joints_took.size(), 2u);
+    EXPECT_NEAR(s.joints_took[1], 352.1 - 349.1, 1e-9);
+    EXPECT_NEAR(s.contacts_took[1], 24.9 + 0.002, 1e-9);
+    EXPECT_NEAR(s.driven[1], 0.25, 1e-12);
+    // kinetic + potential + elastic + removed + joints_damped + contacts + integration - injected - driven
+    EXPECT_NEAR(s.books[1], 1.4 + 1.0 + 0.5 + 352.1 - 349.1 + 24.9 + 0.002 - 0.83 - 0.25, 1e-9);
+    EXPECT_NEAR(s.books[0], 30, 1e-12);
 }
 
 TEST(Plot, BadCsvIsRefusedWithFileAndLine) {
