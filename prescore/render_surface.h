@@ -37,10 +37,10 @@ namespace shatter {
 // whole surface, so its work grows as pieces x surface triangles (measured ~2 us per triangle
 // and piece on the demo: 10 x 69,666 in 1.4 s): the surface is simplified further for many
 // pieces, to what keeps pieces x triangles within kRenderSurfaceWork (about 8 s), but not below
-// kRenderSurfaceFewest; beyond that the pieces keep their tet surfaces. CGAL's simplification costs ~20 us per triangle removed (2 million
-// to 200,000 triangles: 41 s): a surface over kRenderSurfaceSimplifyLimit is first reduced to
-// kRenderSurfaceReduced by meshoptimizer's (1.3 s for those 2 million), whose touching sheets
-// and crossings simplify_surface mends. The simplification and the cut run in a child process
+// kRenderSurfaceFewest; beyond that the pieces keep their tet surfaces. CGAL's simplification
+// costs ~20 us per triangle removed (2 million to 200,000 triangles: 41 s): a surface over
+// kRenderSurfaceSimplifyLimit is first reduced to kRenderSurfaceReduced by meshoptimizer's (1.3 s
+// for those 2 million), whose touching sheets and crossings simplify_surface mends. The simplification and the cut run in a child process
 // (core/isolated.h) with a deadline of kRenderSurfaceSeconds plus both's expected time: a crash
 // inside CGAL (its repair of crossings is experimental) or a run past it leaves every piece its
 // tet surface, noted as a choice.
@@ -48,7 +48,7 @@ inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet size
 inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
 inline constexpr size_t kRenderSurfaceTriangles = 12000;      // most surface triangles cut
 inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surface triangles
-inline constexpr size_t kRenderSurfaceFewest = 1000;        // fewest kept for many pieces
+inline constexpr size_t kRenderSurfaceFewest = 1000;          // fewest kept for many pieces
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are first reduced (reduce_surface)
 inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many triangles
 
