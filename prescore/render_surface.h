@@ -40,10 +40,10 @@ namespace shatter {
 // kRenderSurfaceFewest; beyond that the pieces keep their tet surfaces. CGAL's simplification
 // costs ~20 us per triangle removed (2 million to 200,000 triangles: 41 s): a surface over
 // kRenderSurfaceSimplifyLimit is first reduced to kRenderSurfaceReduced by meshoptimizer's (1.3 s
-// for those 2 million), whose touching sheets and crossings simplify_surface mends. The simplification and the cut run in a child process
-// (core/isolated.h) with a deadline of kRenderSurfaceSeconds plus both's expected time: a crash
-// inside CGAL (its repair of crossings is experimental) or a run past it leaves every piece its
-// tet surface, noted as a choice.
+// for those 2 million), whose touching sheets and crossings simplify_surface mends. The
+// simplification and the cut run in a child process (core/isolated.h) with a deadline of
+// kRenderSurfaceSeconds plus both's expected time: a crash inside CGAL (its repair of crossings
+// is experimental) or a run past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
 inline constexpr double kRenderSurfaceSeconds = 20;           // (unit: s)
 inline constexpr size_t kRenderSurfaceTriangles = 12000;      // most surface triangles cut
