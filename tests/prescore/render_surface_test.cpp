@@ -142,17 +142,23 @@ TEST(RenderSurface, HollowSphereKeepsItsCavityFacesAndFollowsTheInput) {
     EXPECT_GT(cavity, 0u);
 }
 
-TEST(RenderSurface, PrescoreMakesNoneWhenTheSettingIsOff) {
-    testing_support::TempDir dir;
+// An icosphere of `levels` and radius 0.1 m (dir/sphere.obj) prescored into `pieces`.
+Model prescore_sphere(const testing_support::TempDir& dir, int levels, uint32_t pieces, double resolution,
+                      bool render_surface, PrescoreReport* report) {
     MeshSettings mesh;
-    mesh.path = dir.write("sphere.obj", obj(icosphere(2)));
+    mesh.path = dir.write("sphere.obj", obj(icosphere(levels)));
     mesh.scale = 0.1;
     PrescoreSettings settings;
-    settings.pieces = 3;
-    settings.resolution = 8;
-    settings.render_surface = false;
+    settings.pieces = pieces;
+    settings.resolution = resolution;
+    settings.render_surface = render_surface;
+    return prescore(mesh, settings, report);
+}
+
+TEST(RenderSurface, PrescoreMakesNoneWhenTheSettingIsOff) {
+    testing_support::TempDir dir;
     PrescoreReport report;
-    const Model m = prescore(mesh, settings, &report);
+    const Model m = prescore_sphere(dir, 2, 3, 8, false, &report);
     for (const Piece& p : m.pieces) EXPECT_FALSE(p.render);
     EXPECT_EQ(report.render_surfaces, 0u);
     EXPECT_NE(m.settings_json.find("\"render_surface\":false"), std::string::npos) << m.settings_json;
@@ -177,14 +183,8 @@ TEST(RenderSurface, ManyPiecesGetASurfaceSimplifiedToTheCutsBudget) {
 // 4e6 / 500 = 8,000 triangles (a choice, noted), and still follows the sphere.
 TEST(RenderSurface, FiveHundredPiecesAreCutFromTheSurfaceSimplifiedTo8000Triangles) {
     testing_support::TempDir dir;
-    MeshSettings mesh;
-    mesh.path = dir.write("sphere.obj", obj(icosphere(5)));
-    mesh.scale = 0.1;
-    PrescoreSettings settings;
-    settings.pieces = 500;
-    settings.resolution = 40;
     PrescoreReport report;
-    const Model m = prescore(mesh, settings, &report);
+    const Model m = prescore_sphere(dir, 5, 500, 40, true, &report);
     ASSERT_EQ(m.pieces.size(), 500u);
     EXPECT_EQ(report.render_surfaces, 500u);
     bool noted = false;
@@ -194,7 +194,7 @@ TEST(RenderSurface, FiveHundredPiecesAreCutFromTheSurfaceSimplifiedTo8000Triangl
     std::vector<RenderSurface> surfaces;
     for (const Piece& p : m.pieces)
         if (p.render) surfaces.push_back(*p.render);
-    TriangleMesh input = load_mesh(mesh.path, 0.1);
+    TriangleMesh input = load_mesh(dir.file("sphere.obj"), 0.1);
     if (check_mesh(input, false).volume < 0) orient_outward(input);
     const SurfaceAgreement a = surface_agreement(input, surfaces, 40, 10);
     // An 8,000-triangle sphere of radius 0.1 m lies within r (1 - cos(edge angle / 2)) ~ 0.05 mm of
