@@ -34,6 +34,7 @@ duration = "auto"
 fps = 30
 substeps = 16
 iterations = 20
+joints = "direct"
 
 [render]
 width = 1280

@@ -274,9 +274,11 @@ TEST(RunCommand, AMeshFileRunsTheDefaultShotOnIt) {
     TempDir dir;
     std::filesystem::copy_file(SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", dir.file("cube.obj"));
     const std::string out = dir.file("out");
+    // (joints = "auto": the default shot's are direct, which simulate does not choose.)
     auto r = run_shatter({"run", dir.file("cube.obj"), "-o", out, "--no-progress", "--set", "simulate.duration=0.3",
                           "--set", "render.width=160", "--set", "render.height=90", "--set", "prescore.pieces=4",
-                          "--set", "prescore.resolution=5", "--set", "prescore.hollow=false"});
+                          "--set", "prescore.resolution=5", "--set", "prescore.hollow=false", "--set",
+                          "simulate.joints=auto"});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     for (const char* f : {"cube.model", "cube.traj", "cube.mp4", "cube.glb", "summary.json", "frames/frame_00008.png"})
         EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;

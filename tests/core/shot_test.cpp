@@ -85,8 +85,9 @@ TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
 }
 
 // A real material's joints are too stiff for the default step (omega h in the hundreds at
-// 1/480 s): the default shot resolves them with the automatic step and direct joints, unless the
-// user chose the step or the joint solve. The demo's weak cast (E = 0.2 GPa) keeps the fixed step.
+// 1/480 s): the default shot resolves them with the automatic step (its joints are direct
+// already), unless the user chose the step or the joint solve. The demo's weak cast (E = 0.2 GPa)
+// keeps the fixed step.
 TEST(ShotFile, TheDefaultShotResolvesARealMaterialsJointsUnlessTheUserChoseTheStep) {
     const Shot porcelain = default_shot_for_mesh("horse.3ds", {"material.preset=porcelain"});
     EXPECT_TRUE(porcelain.simulate.auto_substeps);
@@ -97,12 +98,12 @@ TEST(ShotFile, TheDefaultShotResolvesARealMaterialsJointsUnlessTheUserChoseTheSt
         const Shot s = default_shot_for_mesh("horse.3ds", {weak});
         EXPECT_FALSE(s.simulate.auto_substeps) << weak;
         EXPECT_EQ(s.simulate.substeps, 16u) << weak;
-        EXPECT_EQ(s.simulate.joints, JointSolve::Auto) << weak;
+        EXPECT_EQ(s.simulate.joints, JointSolve::Direct) << weak;
     }
     const Shot step = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.substeps=64"});
     EXPECT_FALSE(step.simulate.auto_substeps);
     EXPECT_EQ(step.simulate.substeps, 64u);
-    EXPECT_EQ(step.simulate.joints, JointSolve::Auto);
+    EXPECT_EQ(step.simulate.joints, JointSolve::Direct);
     const Shot joints = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.joints=iterative"});
     EXPECT_FALSE(joints.simulate.auto_substeps);
     EXPECT_EQ(joints.simulate.joints, JointSolve::Iterative);
