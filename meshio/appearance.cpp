@@ -35,7 +35,6 @@ Mat4 to_eigen(const aiMatrix4x4& m) {
     return r;
 }
 
-
 constexpr int kTextureFolderUp = 3;  // folders above the mesh file's searched for a texture's written path
 
 // The files in `dir` (not below) whose names are `wanted` in any letter case, in name order;

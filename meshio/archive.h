@@ -4,11 +4,10 @@
 // libarchive, by the file name's ending.
 // The archive is unpacked into a temporary folder that lives as long as the MeshArchive, and one
 // mesh file in it is chosen: the format most likely to carry the model whole (glTF, then FBX,
-// Collada, OBJ, 3DS, then any other file assimp reads), then the one nearest the archive's top,
-// then the largest (a model's finest level of detail), then by name.
+// Collada, OBJ, 3DS, Blender's .blend, then any other file assimp reads), then the one nearest the
+// archive's top, then the largest (a model's finest level of detail), then by name.
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>

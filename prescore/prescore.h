@@ -43,11 +43,11 @@ struct PrescoreReport {
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
 
-// The object's mesh as prescore takes it, before any check: unpacked first when it comes in a ZIP
-// archive (meshio/archive.h; the mesh chosen in it noted in `choices`), read (meshio/mesh_load.h), its
-// coordinates' rounding warned and a size out of reach refused, turned to stand when the file is
-// z-up ([mesh] up; noted in `choices`), and sized to metres (choose_scale). `shatter info MESH`
-// describes the same mesh.
+// The object's mesh as prescore takes it, before any check: unpacked first when it comes in an
+// archive (.zip, .7z, .rar, tar; meshio/archive.h; the mesh chosen in it noted in `choices`), read
+// (meshio/mesh_load.h), its coordinates' rounding warned and a size out of reach refused, turned to
+// stand when the file is z-up ([mesh] up; noted in `choices`), and sized to metres (choose_scale).
+// `shatter info MESH` describes the same mesh.
 struct InputMesh {
     LoadedMesh loaded;  // its coordinates in metres
     double scale = 1;   // metres per file unit

@@ -22,10 +22,12 @@ their ratio to alpha x stored) and the camera (pieces in view, stillness at the 
 """
 import argparse
 import concurrent.futures
+import glob
 import json
 import os
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import tarfile
@@ -220,8 +222,6 @@ def run_joints(out):
     """The joint solve a run used ("direct" or "iterative": its trajectory's settings, with auto
     resolved) and the energy its breaking joints held by their stretch (the energy CSV's last
     removed_J); (None, None) when the files are not there."""
-    import glob
-    import struct
     joints = removed = None
     try:
         traj = glob.glob(os.path.join(out, "*.traj"))[0]
