@@ -20,7 +20,7 @@
 #include "core/isolated.h"
 #include "core/model_io.h"
 #include "core/utf8.h"
-#include "meshio/gltf_extensions.h"
+#include "meshio/assimp_input.h"
 #include "meshio/image_decode.h"
 #include "meshio/mesh_load.h"
 
@@ -207,9 +207,8 @@ Appearance import_in_process(const std::string& path) {
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                                             aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                                             aiComponent_LIGHTS | aiComponent_CAMERAS);
-    // A glTF file as gltfpack writes it, decoded first (meshio/gltf_extensions.h).
-    const std::optional<std::string> glb = plain_glb(path);
-    const aiScene* scene = glb ? importer.ReadFileFromMemory(glb->data(), glb->size(), 0, "glb") : importer.ReadFile(path, 0);
+    // Made readable first where assimp would misread it (meshio/assimp_input.h).
+    const aiScene* scene = read_scene(importer, path);
     const std::string fix = "check that the file is a complete mesh in a format assimp reads";
     if (scene == nullptr) throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), fix);
     scene = importer.ApplyPostProcessing(aiProcess_RemoveComponent);

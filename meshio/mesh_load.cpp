@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/find_program.h"
 #include "core/isolated.h"
+#include "meshio/assimp_input.h"
 #include "meshio/gltf_extensions.h"
 #include "meshio/ply_header.h"
 
@@ -309,9 +310,8 @@ LoadedMesh import_in_process(const std::string& path) {
                                     aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
                                     aiComponent_ANIMATIONS | aiComponent_TEXTURES | aiComponent_LIGHTS |
                                     aiComponent_CAMERAS | aiComponent_MATERIALS);
-    // A glTF file as gltfpack writes it, decoded first (meshio/gltf_extensions.h).
-    const std::optional<std::string> glb = plain_glb(path);
-    const aiScene* scene = glb ? importer.ReadFileFromMemory(glb->data(), glb->size(), 0, "glb") : importer.ReadFile(path, 0);
+    // Made readable first where assimp would misread it (meshio/assimp_input.h).
+    const aiScene* scene = read_scene(importer, path);
     if (scene == nullptr) {
         throw_input_error(path, std::string("cannot read mesh: ") + importer.GetErrorString(), format_fix(path));
     }
