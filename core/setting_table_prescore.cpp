@@ -107,7 +107,7 @@ SettingsSection mesh_section() {
              choice<UpAxis>("up", at(&Shot::mesh, &MeshSettings::up),
                             {{"auto", UpAxis::Auto}, {"y", UpAxis::Y}, {"z", UpAxis::Z}},
                             "which way is up in the file (shatter's world is y-up; a z-up file is turned to stand "
-                            "up): auto: z for STL and 3MF (CAD and 3D printing), Blender's .blend and the PLY files Blender "
+                            "up): auto: z for STL, 3MF and AMF (CAD and 3D printing), Blender's .blend and the PLY files Blender "
                             "writes, and an FBX file whose settings say so; y for every other format",
                             "an up axis", "use \"auto\", \"y\" or \"z\"")
                  .json_unless_default()

@@ -35,7 +35,7 @@ enum class RepairMode { Auto, Always, Never };
 const char* to_string(RepairMode mode);
 
 // Which way is up in the mesh file. shatter's world is y-up; a z-up file is turned by -90 degrees
-// about x ((x, y, z) -> (x, z, -y): +z becomes +y). Auto: z for STL and 3MF (CAD's and 3D
+// about x ((x, y, z) -> (x, z, -y): +z becomes +y). Auto: z for STL, 3MF and AMF (CAD's and 3D
 // printing's convention; Blender also writes STL z-up), for Blender's own files (z-up, which
 // assimp reads as they are), for an FBX file whose settings say z is up (assimp does not apply
 // them) and for a PLY file Blender wrote (its header's comment); y for everything else (glTF's rule, most OBJ and PLY; assimp turns 3DS and Collada files

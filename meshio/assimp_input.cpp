@@ -3,6 +3,8 @@
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/MemoryIOWrapper.h>
+#include <archive.h>
+#include <archive_entry.h>
 
 #include <array>
 #include <charconv>
@@ -16,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "meshio/archive.h"
 #include "meshio/gltf_extensions.h"
 #include "meshio/mesh_load.h"
 
@@ -92,6 +95,32 @@ std::vector<std::string_view> fields(std::string_view line) {
         if (i > start) out.push_back(line.substr(start, i - start));
     }
     return out;
+}
+
+// The first file of a ZIP archive, whole; throws Error(BadInput) naming `path` when it cannot be
+// read or unpacks past kMaxArchiveBytes.
+std::string first_zip_entry(const std::string& path) {
+    std::unique_ptr<archive, int (*)(archive*)> in(archive_read_new(), archive_read_free);
+    archive_read_support_format_zip(in.get());
+    archive_entry* entry = nullptr;
+    const std::string fix = "unzip it and give shatter the file inside, or export it again";
+    if (archive_read_open_filename(in.get(), path.c_str(), 1 << 16) != ARCHIVE_OK)
+        throw_input_error(path, std::string("cannot read the ZIP archive: ") + archive_error_string(in.get()), fix);
+    int status;
+    while ((status = archive_read_next_header(in.get(), &entry)) == ARCHIVE_OK || status == ARCHIVE_WARN) {
+        if (archive_entry_filetype(entry) != AE_IFREG) continue;
+        std::string out;
+        char buffer[1 << 16];
+        la_ssize_t n;
+        while ((n = archive_read_data(in.get(), buffer, sizeof buffer)) > 0) {
+            out.append(buffer, static_cast<size_t>(n));
+            if (out.size() > kMaxArchiveBytes)
+                throw_input_error(path, fmt::format("the file inside unpacks past {} bytes", kMaxArchiveBytes), fix);
+        }
+        if (n < 0) throw_input_error(path, std::string("cannot unpack: ") + archive_error_string(in.get()), fix);
+        return out;
+    }
+    throw_input_error(path, "the ZIP archive holds no file", fix);
 }
 
 }  // namespace
@@ -241,6 +270,12 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
     if (lower_extension(path) == ".jobj") {
         const std::string obj = jobj_as_obj(read_whole(path), path);
         return importer.ReadFileFromMemory(obj.data(), obj.size(), 0, "obj");
+    }
+    // AMF may be compressed as a ZIP of its one XML file (the specification allows it; OpenSCAD
+    // and slicers write it so); assimp 5.2 reads only the XML.
+    if (lower_extension(path) == ".amf" && read_file_head(path, 4) == std::string("PK\x03\x04", 4)) {
+        const std::string xml = first_zip_entry(path);
+        return importer.ReadFileFromMemory(xml.data(), xml.size(), 0, "amf");
     }
     importer.SetIOHandler(new ReadableText);
     return importer.ReadFile(path, 0);

@@ -11,6 +11,8 @@
 //     assimp 5.2 reads its bytes as if they were ASCII (an OBJ or ASE gave no triangles, a
 //     Collada file "malformed XML"); it is given the same text in UTF-8, and so are the files it
 //     names (an OBJ's material library);
+//   - an AMF file compressed as a ZIP of its XML (the specification allows it; OpenSCAD writes
+//     it): unpacked, assimp reads only the XML;
 //   - an OFF file with comments after the numbers on a line, or colours of three components
 //     (CGAL's data writes "1 -1 0 0.9 0 0 #red"): assimp's OFF reader takes a comment for a
 //     number and reads four components (RGBA), taking the next line's first number for alpha;

@@ -454,6 +454,7 @@ std::string z_up_format(const std::string& path, bool states_z_up) {
     if (states_z_up) return "a PLY file Blender wrote (its header says so): Blender makes z up";
     if (ext == ".stl") return "an STL file: CAD and 3D printing make z up";
     if (ext == ".3mf") return "a 3MF file: 3D printing makes z up";
+    if (ext == ".amf") return "an AMF file: 3D printing makes z up";
     if (ext == ".blend") return "a Blender file: Blender makes z up";
     return "";
 }

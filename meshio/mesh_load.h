@@ -85,7 +85,7 @@ std::string lower_case(std::string s);
 // The file name's extension in lower case, with its dot (".glb"); "" without one.
 std::string lower_extension(const std::string& path);
 
-// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl, .3mf or .blend
+// Whether the file at `path` is read as z-up with `up` ([mesh] up; Auto: an .stl, .3mf, .amf or .blend
 // file, or one that states z is up: LoadedMesh::states_z_up).
 bool z_up(UpAxis up, const std::string& path, bool states_z_up);
 

@@ -1,6 +1,6 @@
 // Files assimp 5.2 misreads, made readable (meshio/assimp_input.h): the same unit cube from a
 // UTF-16 OBJ (either byte order, with its UTF-16 material library), an OFF file with comments
-// after its numbers, and glmark2's .jobj; the jellyfish itself; and the decoders' edges.
+// after its numbers, a zipped AMF and glmark2's .jobj; the jellyfish itself; and the decoders' edges.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -106,6 +106,10 @@ TEST(AssimpInput, AJobjIsTheUnitCubeAndItsIndicesAreChecked) {
     EXPECT_NE(problem("i -1\n").find("whole number"), std::string::npos);
     EXPECT_EQ(jobj_as_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\ni 2\ni 1\ni 0\n", "x.jobj"),
               "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 3 2 1\n");
+}
+
+TEST(AssimpInput, AZippedAmfIsTheUnitCube) {
+    expect_unit_cube(load_mesh(SHATTER_SOURCE_DIR "/tests/fixtures/amf/cube_zipped.amf", 1.0));
 }
 
 // glmark2's jellyfish (the one model of glmark2-data assimp reads as points): 13,200 indices,
