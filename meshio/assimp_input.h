@@ -13,10 +13,12 @@
 //     names (an OBJ's material library);
 //   - an AMF file compressed as a ZIP of its XML (the specification allows it; OpenSCAD writes
 //     it): unpacked, assimp reads only the XML;
-//   - an OFF file with comments after the numbers on a line, or colours of three components
-//     (CGAL's data writes "1 -1 0 0.9 0 0 #red"): assimp's OFF reader takes a comment for a
-//     number and reads four components (RGBA), taking the next line's first number for alpha;
-//     the comments go, and a colour of three gets an alpha of 1.
+//   - an OFF file with comments, or colours of three components: assimp's OFF reader reads a
+//     comment line between the numbers in place of a face (CGAL writes "# vertices" and "#
+//     facets" lines: its cube_poly.off came out with 10 of its 12 triangles), takes a comment
+//     after the numbers ("1 -1 0 0.9 0 0 #red") for a number, and reads four colour components
+//     (RGBA), taking the next line's first number for alpha; the comments go, and a colour of
+//     three gets an alpha of 1.
 #pragma once
 
 #include <optional>

@@ -85,6 +85,18 @@ TEST(AssimpInput, AnOffFileWithCommentsAfterItsNumbersIsTheUnitCubeWithItsColour
     EXPECT_GT(a.colour.front()[0], 0.5);
 }
 
+// CGAL's OFF writer puts comment lines between the counts, the vertices and the faces; assimp
+// 5.2 read each such line in place of a face (CGAL's cube_poly.off: 10 of its 12 triangles).
+TEST(AssimpInput, AnOffFileWithCommentLinesAsCgalWritesThemKeepsEveryFace) {
+    std::ostringstream s;
+    s << "OFF\n8 12 0\n# vertices\n";
+    for (const auto& c : kCorners) s << c[0] << " " << c[1] << " " << c[2] << "\n";
+    s << "# facets\n";
+    for (const auto& f : kFaces) s << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
+    s << "\n# End of OFF #\n";
+    expect_unit_cube(load_mesh(write_file("cgal.off", s.str()), 1.0));
+}
+
 TEST(AssimpInput, AJobjIsTheUnitCubeAndItsIndicesAreChecked) {
     std::ostringstream s;
     for (const auto& c : kCorners) s << "v " << c[0] << " " << c[1] << " " << c[2] << "\nvn 0 0 1\nvt 0 0 0\n";
