@@ -170,7 +170,7 @@ public:
 private:
     void add_mesh(const aiMesh& mesh, const Mat4& transform) {
         const uint32_t base = uint32_t(out_.mesh.vertices.size());
-        const bool has_uv = mesh.HasTextureCoords(0), has_colour = mesh.HasVertexColors(0);
+        const bool has_uv = mesh.HasTextureCoords(0), has_colour = shows_vertex_colours(mesh);
         for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
             const aiVector3D& v = mesh.mVertices[i];
             const Eigen::Vector4d p = transform * Vec3(v.x, v.y, v.z).homogeneous();
@@ -179,7 +179,9 @@ private:
             auto finite = [](float x, float otherwise) { return std::isfinite(x) ? x : otherwise; };
             uv.push_back(has_uv ? std::array<float, 2>{finite(mesh.mTextureCoords[0][i].x, 0), finite(mesh.mTextureCoords[0][i].y, 0)}
                                 : std::array<float, 2>{0, 0});
-            const aiColor4D c = has_colour ? mesh.mColors[0][i] : aiColor4D(1, 1, 1, 1);
+            const float* none = kNoVertexColour;
+            aiColor4D c(none[0], none[1], none[2], none[3]);
+            if (has_colour && !no_vertex_colour(mesh.mColors[0][i])) c = mesh.mColors[0][i];
             colour.push_back({finite(c.r, 1), finite(c.g, 1), finite(c.b, 1), finite(c.a, 1)});
         }
         any_uv = any_uv || has_uv;

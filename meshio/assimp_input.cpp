@@ -264,6 +264,13 @@ std::string jobj_as_obj(const std::string& text, const std::string& path) {
     return obj;
 }
 
+bool shows_vertex_colours(const aiMesh& mesh) {
+    if (!mesh.HasVertexColors(0)) return false;
+    for (unsigned i = 0; i < mesh.mNumVertices; ++i)
+        if (!no_vertex_colour(mesh.mColors[0][i])) return true;
+    return false;
+}
+
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
     if (const std::optional<std::string> glb = plain_glb(path))
         return importer.ReadFileFromMemory(glb->data(), glb->size(), 0, "glb");

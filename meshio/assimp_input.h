@@ -29,6 +29,19 @@
 
 namespace shatter {
 
+// Whether `mesh` shows vertex colours: it has a first colour set in which some vertex is not
+// (0, 0, 0, 0). assimp's AMF reader gives every mesh a colour set, with (0, 0, 0, 0) (transparent
+// black) where the file gives no colour: drawn as colours, an AMF without any came out black.
+// Where a set has colours, a vertex of (0, 0, 0, 0) is drawn in its material's colour
+// (kNoVertexColour).
+bool shows_vertex_colours(const aiMesh& mesh);
+
+// What a vertex without a colour of its own is drawn in: white, which leaves its material's colour.
+inline constexpr float kNoVertexColour[4] = {1, 1, 1, 1};
+
+// Whether a vertex colour is the (0, 0, 0, 0) that stands for none.
+inline bool no_vertex_colour(const aiColor4D& c) { return c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0; }
+
 // Reads `path` with `importer` (its properties already set), made readable as above; nullptr
 // when assimp cannot read it (importer.GetErrorString() says why). Throws Error(BadInput) naming
 // the file, the line and the fix for a .jobj whose numbers or indices do not hold together.

@@ -285,7 +285,7 @@ bool states_z_up(const aiScene& scene, const std::string& path) {
 // (found or not: one not found is a warning), and every material assimp's default or white.
 bool shows_only_its_shape(const aiScene& scene) {
     for (unsigned i = 0; i < scene.mNumMeshes; ++i)
-        if (scene.mMeshes[i]->HasVertexColors(0)) return false;
+        if (shows_vertex_colours(*scene.mMeshes[i])) return false;
     for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
         const aiMaterial& m = *scene.mMaterials[i];
         for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE})

@@ -1,6 +1,7 @@
 // Files assimp 5.2 misreads, made readable (meshio/assimp_input.h): the same unit cube from a
 // UTF-16 OBJ (either byte order, with its UTF-16 material library), an OFF file with comments
-// after its numbers, a zipped AMF and glmark2's .jobj; the jellyfish itself; and the decoders' edges.
+// after its numbers, a zipped AMF and glmark2's .jobj; AMF without colours; the jellyfish itself;
+// and the decoders' edges.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -122,6 +123,20 @@ TEST(AssimpInput, AJobjIsTheUnitCubeAndItsIndicesAreChecked) {
 
 TEST(AssimpInput, AZippedAmfIsTheUnitCube) {
     expect_unit_cube(load_mesh(SHATTER_SOURCE_DIR "/tests/fixtures/amf/cube_zipped.amf", 1.0));
+}
+
+// assimp's AMF reader gives every vertex a colour, (0, 0, 0, 0) where the file has none: an AMF
+// without colours is plain (drawn in its material's colour, not black), one with them keeps them.
+TEST(AssimpInput, AnAmfWithoutColoursIsPlainAndOneWithThemKeepsThem) {
+    const std::string amf = SHATTER_SOURCE_DIR "/tests/fixtures/amf/cube_zipped.amf";
+    EXPECT_TRUE(load_mesh_file(amf).plain);
+    EXPECT_TRUE(load_appearance(amf).colour.empty());
+    const std::string green = "/usr/share/assimp/models/AMF/test2.amf";  // a green tetrahedron
+    if (!std::filesystem::exists(green)) GTEST_SKIP() << green << " is missing (fix: scripts/install-deps.sh)";
+    EXPECT_FALSE(load_mesh_file(green).plain);
+    const Appearance a = load_appearance(green);
+    ASSERT_FALSE(a.colour.empty());
+    EXPECT_GT(a.colour.front()[1], a.colour.front()[0]);
 }
 
 // glmark2's jellyfish (the one model of glmark2-data assimp reads as points): 13,200 indices,
