@@ -36,6 +36,7 @@ Mat4 to_eigen(const aiMatrix4x4& m) {
 }
 
 constexpr int kTextureFolderUp = 3;  // folders above the mesh file's searched for a texture's written path
+constexpr size_t kTextureSiblingFolders = 64;  // folders beside the mesh file's searched for a texture's name
 
 // The files in `dir` (not below) whose names are `wanted` in any letter case, in name order;
 // its folders into `folders` when given.
@@ -57,8 +58,8 @@ std::vector<std::string> files_named(const std::filesystem::path& dir, const std
 // A texture file named by a material: as written, relative to the mesh file's folder, and by its
 // bare name in that folder (exporters often keep the path of the machine they ran on); then that
 // bare name in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg), in the
-// mesh file's folder and then in the folders beside it ("textures/", as downloads ship them),
-// the first in name order; then the written path's last folders and name under the folders up to
+// mesh file's folder, then in the folders in it ("textures/", as downloads ship them), then in
+// the folders beside it (models/ and textures/ side by side), the first in name order; then the written path's last folders and name under the folders up to
 // kTextureFolderUp above the mesh file's (a project moved from where it was made:
 // D:\...\models\OBJ\wood.jpg named by models/FBX/spider.fbx is models/OBJ/wood.jpg).
 std::string find_texture_file(const std::string& mesh_path, std::string name) {
@@ -73,6 +74,17 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::vector<std::string> found = files_named(dir.empty() ? "." : dir, wanted, &folders);
     std::sort(folders.begin(), folders.end());
     for (size_t i = 0; found.empty() && i < folders.size(); ++i) found = files_named(folders[i], wanted, nullptr);
+    // The folders beside the mesh file's own (models/ and textures/ side by side, as game mods
+    // and asset packs keep them), the first kTextureSiblingFolders in name order.
+    std::filesystem::path own = std::filesystem::absolute(dir.empty() ? "." : dir, ec).lexically_normal();
+    if (own.filename().empty()) own = own.parent_path();
+    if (found.empty() && own.has_relative_path()) {
+        std::vector<std::string> siblings;
+        files_named(own.parent_path(), "", &siblings);
+        std::sort(siblings.begin(), siblings.end());
+        for (size_t i = 0; found.empty() && i < siblings.size() && i < kTextureSiblingFolders; ++i)
+            if (std::filesystem::path(siblings[i]) != own) found = files_named(siblings[i], wanted, nullptr);
+    }
     if (!found.empty()) return found.front();
     std::vector<std::string> parts;  // the written path's folders, without a drive or root
     for (const auto& part : std::filesystem::path(name).relative_path().parent_path())

@@ -10,13 +10,12 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "meshio/archive.h"
 #include "meshio/gltf_extensions.h"
@@ -76,13 +75,6 @@ public:
         return new Assimp::MemoryIOStream(buffer, text->size(), true);
     }
 };
-
-std::string read_whole(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // The fields of one line, split at spaces and tabs.
 std::vector<std::string_view> fields(std::string_view line) {
@@ -275,7 +267,7 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
     if (const std::optional<std::string> glb = plain_glb(path))
         return importer.ReadFileFromMemory(glb->data(), glb->size(), 0, "glb");
     if (lower_extension(path) == ".jobj") {
-        const std::string obj = jobj_as_obj(read_whole(path), path);
+        const std::string obj = jobj_as_obj(read_file(path, "mesh file"), path);
         return importer.ReadFileFromMemory(obj.data(), obj.size(), 0, "obj");
     }
     // AMF may be compressed as a ZIP of its one XML file (the specification allows it; OpenSCAD

@@ -129,6 +129,25 @@ TEST(Appearance, ATextureIsFoundByItsNameInAnyLetterCaseBesideTheFileOrInAFolder
     EXPECT_EQ(texture_of(a).texture_name, "DUCKcm.TGA");
 }
 
+// Game mods and asset packs keep models/ and textures/ side by side (Minetest's carts: models/
+// carts_cart.b3d naming carts_cart.png in textures/): the duck in models/, its texture in textures/.
+TEST(Appearance, ATextureIsFoundInAFolderBesideTheMeshFilesFolder) {
+    if (!have(kDuck)) GTEST_SKIP() << kDuck << " is missing";
+    const std::string tga = kModels + "/Collada/duckCM.tga";
+    testing_support::TempDir dir;
+    std::filesystem::create_directories(dir.file("models"));
+    std::filesystem::create_directories(dir.file("textures"));
+    std::filesystem::copy_file(kDuck, dir.file("models/duck.dae"));
+    Appearance a = load_appearance(dir.file("models/duck.dae"));
+    EXPECT_EQ(a.warnings.size(), 1u) << "not found yet";
+    std::filesystem::copy_file(tga, dir.file("textures/duckCM.tga"));
+    a = load_appearance(dir.file("models/duck.dae"));
+    EXPECT_TRUE(a.warnings.empty());
+    bool found = false;
+    for (const Material& m : a.materials) found = found || m.texture.size() == std::filesystem::file_size(tga);
+    EXPECT_TRUE(found);
+}
+
 // assimp's FBX spider names its textures where it was made (D:\projects\...\models\OBJ\drkwood2.jpg,
 // ...); copied to models/FBX/ with the images in models/OBJ/, each is found by the
 // written path's last folder and name under the folder above the file's.
