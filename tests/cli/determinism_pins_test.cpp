@@ -7,8 +7,11 @@
 // and say in the commit message why the bytes changed.
 //
 // A frame's bytes are also the renderer's: a point release of Mesa's software rasterizer
-// (Debian's libosmesa6) moves pixels by a level here and there. The pins record the renderer's
-// package version; on another version the frames are not compared (the test says so), the model
+// (Debian's libosmesa6) moves pixels by a level here and there, and so does the processor it
+// compiles its shaders for (llvmpipe's JIT uses what the processor has: on a machine with
+// AVX-512, code that draws the same and the same package gave other frame bytes for every scene,
+// and the same model and trajectory bytes). The pins record the renderer's package version and the processor's widest vector
+// instructions; where either differs the frames are not compared (the test says so), the model
 // and trajectory bytes still are.
 #include <gtest/gtest.h>
 
@@ -54,6 +57,23 @@ std::string renderer_version() {
     return r.exit_code == 0 && !r.out.empty() ? r.out : "unknown";
 }
 
+// The widest vector instructions the processor has, by /proc/cpuinfo's flags: "avx512f",
+// "avx2", "avx" or "sse".
+std::string vector_instructions() {
+    std::istringstream in(slurp("/proc/cpuinfo"));
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("flags", 0) != 0) continue;
+        line += ' ';
+        for (const char* isa : {"avx512f", "avx2", "avx"})
+            if (line.find(std::string(" ") + isa + " ") != std::string::npos) return isa;
+        break;
+    }
+    return "sse";
+}
+
+// What draws the frames: "libosmesa6 VERSION on ISA".
+std::string renderer() { return "libosmesa6 " + renderer_version() + " on " + vector_instructions(); }
+
 std::string hash_of(const std::string& path) { return fmt::format("{:016x}", fnv1a64(slurp(path))); }
 
 TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
@@ -74,15 +94,15 @@ TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
         std::ofstream pins(kPins);
         pins << "# FNV-1a 64 of each built-in scene's model, trajectory and frame " << kFrame
              << " (0.2 s, 160x90): tests/cli/determinism_pins_test.cpp\n";
-        pins << "renderer libosmesa6 " << renderer_version() << '\n';
+        pins << "renderer " << renderer() << '\n';
         for (const auto& [name, hash] : got) pins << name << ' ' << hash << '\n';
         GTEST_SKIP() << "pins rewritten: " << kPins;
     }
     auto pins = read_pins();
     const std::string pinned_renderer = pins["renderer"];
     pins.erase("renderer");
-    const std::string renderer = "libosmesa6 " + renderer_version();
-    const bool same_renderer = pinned_renderer == renderer;
+    const std::string renderer_now = renderer();
+    const bool same_renderer = pinned_renderer == renderer_now;
     ASSERT_EQ(pins.size(), got.size()) << "re-pin with SHATTER_UPDATE_PINS=1 (see the file's comment)";
     for (const auto& [name, hash] : got) {
         const auto it = pins.find(name);
@@ -92,7 +112,7 @@ TEST(DeterminismPins, EveryBuiltInSceneGivesItsPinnedBytes) {
     }
     if (!same_renderer)
         std::printf("frames not compared: pinned with %s, rendered with %s (re-pin with SHATTER_UPDATE_PINS=1)\n",
-                    pinned_renderer.c_str(), renderer.c_str());
+                    pinned_renderer.c_str(), renderer_now.c_str());
 }
 
 }  // namespace
