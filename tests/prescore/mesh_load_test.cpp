@@ -13,15 +13,13 @@
 #include "core/error.h"
 #include "meshio/mesh_load.h"
 #include "prescore/mesh_check.h"
+#include "support/unit_cube.h"
 
 namespace shatter {
 namespace {
 
-// The unit cube [0,1]^3: 8 corners, 12 outward counter-clockwise triangles (0-based).
-const double kCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-const int kFaces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                           {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+using testing_support::kCorners;
+using testing_support::kFaces;
 
 std::string temp_path(const std::string& name) {
     std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "shatter_mesh_load_test";
