@@ -93,11 +93,15 @@ std::vector<std::string_view> fields(std::string_view line) {
 // read or unpacks past kMaxArchiveBytes.
 std::string first_zip_entry(const std::string& path) {
     std::unique_ptr<archive, int (*)(archive*)> in(archive_read_new(), archive_read_free);
+    const auto why = [&in] {
+        const char* e = archive_error_string(in.get());
+        return std::string(e != nullptr ? e : "no reason given");
+    };
     archive_read_support_format_zip(in.get());
     archive_entry* entry = nullptr;
     const std::string fix = "unzip it and give shatter the file inside, or export it again";
     if (archive_read_open_filename(in.get(), path.c_str(), 1 << 16) != ARCHIVE_OK)
-        throw_input_error(path, std::string("cannot read the ZIP archive: ") + archive_error_string(in.get()), fix);
+        throw_input_error(path, "cannot read the ZIP archive: " + why(), fix);
     int status;
     while ((status = archive_read_next_header(in.get(), &entry)) == ARCHIVE_OK || status == ARCHIVE_WARN) {
         if (archive_entry_filetype(entry) != AE_IFREG) continue;
@@ -109,7 +113,7 @@ std::string first_zip_entry(const std::string& path) {
             if (out.size() > kMaxArchiveBytes)
                 throw_input_error(path, fmt::format("the file inside unpacks past {} bytes", kMaxArchiveBytes), fix);
         }
-        if (n < 0) throw_input_error(path, std::string("cannot unpack: ") + archive_error_string(in.get()), fix);
+        if (n < 0) throw_input_error(path, "cannot unpack: " + why(), fix);
         return out;
     }
     throw_input_error(path, "the ZIP archive holds no file", fix);
