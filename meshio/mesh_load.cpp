@@ -221,6 +221,10 @@ std::string format_fix(const std::string& path) {
     const std::string head = read_file_head(path, 12);
     const std::string ext = lower_extension(path);
     const bool blend = ext == ".blend" || head.rfind("BLENDER", 0) == 0;
+    if (ext == ".3mf" && head.rfind("PK\x03\x04", 0) != 0)
+        return "a 3MF file is a ZIP package holding its model (3D/3dmodel.model), and this one is not a ZIP" +
+               std::string(head.rfind("<?xml", 0) == 0 ? " (it is XML: the model alone?)" : "") +
+               ": save it as 3MF again from the program that made it, or as STL";
     if (!blend) {
         for (const ForeignFormat& f : foreign_formats())
             if (std::find(f.extensions.begin(), f.extensions.end(), ext) != f.extensions.end())

@@ -274,6 +274,18 @@ TEST(LoadMeshErrors, EmptyObjIsBadInputNamingTheFile) {
     EXPECT_NE(message.find("empty"), std::string::npos) << message;
 }
 
+// OpenSCAD's test data holds a .3mf that is the model's XML alone, not the ZIP package a 3MF is.
+TEST(LoadMeshErrors, A3mfThatIsNotAZipIsBadInputSayingSo) {
+    const std::string path = write_file("model.3mf", "<?xml version=\"1.0\"?>\n<model unit=\"millimeter\"></model>\n");
+    try {
+        load_mesh(path, 1.0);
+        FAIL() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("this one is not a ZIP (it is XML"), std::string::npos) << e.what();
+    }
+}
+
 TEST(LoadMeshErrors, ObjWithOnlyVerticesIsBadInputWithNoTriangles) {
     const std::string path = write_file("vertices.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
     const std::string message = bad_input_message(path);
