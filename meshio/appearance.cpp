@@ -21,6 +21,7 @@
 #include "core/model_io.h"
 #include "core/utf8.h"
 #include "meshio/assimp_input.h"
+#include "meshio/companions.h"
 #include "meshio/image_decode.h"
 #include "meshio/mesh_load.h"
 
@@ -36,7 +37,6 @@ Mat4 to_eigen(const aiMatrix4x4& m) {
 }
 
 constexpr int kTextureFolderUp = 3;  // folders above the mesh file's searched for a texture's written path
-constexpr size_t kTextureSiblingFolders = 64;  // folders beside the mesh file's searched for a texture's name
 
 // The files in `dir` (not below) whose names are `wanted` in any letter case, in name order;
 // its folders into `folders` when given.
@@ -75,14 +75,14 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::sort(folders.begin(), folders.end());
     for (size_t i = 0; found.empty() && i < folders.size(); ++i) found = files_named(folders[i], wanted, nullptr);
     // The folders beside the mesh file's own (models/ and textures/ side by side, as game mods
-    // and asset packs keep them), the first kTextureSiblingFolders in name order.
+    // and asset packs keep them), the first kSiblingFolders in name order (as companion_files).
     std::filesystem::path own = std::filesystem::absolute(dir.empty() ? "." : dir, ec).lexically_normal();
     if (own.filename().empty()) own = own.parent_path();
     if (found.empty() && own.has_relative_path()) {
         std::vector<std::string> siblings;
         files_named(own.parent_path(), "", &siblings);
         std::sort(siblings.begin(), siblings.end());
-        for (size_t i = 0; found.empty() && i < siblings.size() && i < kTextureSiblingFolders; ++i)
+        for (size_t i = 0; found.empty() && i < siblings.size() && i < kSiblingFolders; ++i)
             if (std::filesystem::path(siblings[i]) != own) found = files_named(siblings[i], wanted, nullptr);
     }
     if (!found.empty()) return found.front();

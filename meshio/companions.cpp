@@ -13,7 +13,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_lower(const fs::path& path, size_t limit) { return lower_case(read_file_head(path.string(), limit)); }
+// The file's first `limit` bytes in lower case; a UTF-16 file's (a byte-order mark first) without
+// its NULs, so that the names in it read as ASCII.
+std::string read_lower(const fs::path& path, size_t limit) {
+    std::string head = read_file_head(path.string(), limit);
+    if (head.rfind("\xFF\xFE", 0) == 0 || head.rfind("\xFE\xFF", 0) == 0) std::erase(head, '\0');
+    return lower_case(std::move(head));
+}
 
 bool companion_extension(const std::string& ext) {
     static constexpr std::array<std::string_view, 20> kExtensions = {
@@ -34,6 +40,22 @@ std::vector<std::string> companion_files(const std::string& mesh_path) {
         if (it.depth() >= 2) it.disable_recursion_pending();
         if (!it->is_regular_file(ec) || fs::equivalent(it->path(), mesh, ec)) continue;
         if (companion_extension(lower_extension(it->path().string()))) candidates.push_back(it->path());
+    }
+    // The folders beside the mesh file's own: their files, not below.
+    fs::path own = fs::absolute(dir, ec).lexically_normal();
+    if (own.filename().empty()) own = own.parent_path();
+    if (own.has_relative_path()) {
+        std::vector<fs::path> siblings;
+        for (fs::directory_iterator it(own.parent_path(), fs::directory_options::skip_permission_denied, ec), end;
+             !ec && it != end; it.increment(ec))
+            if (it->is_directory(ec) && it->path() != own) siblings.push_back(it->path());
+        std::sort(siblings.begin(), siblings.end());
+        if (siblings.size() > kSiblingFolders) siblings.resize(kSiblingFolders);
+        for (const fs::path& folder : siblings)
+            for (fs::directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
+                 !ec && it != end && candidates.size() < kCompanionCandidates; it.increment(ec))
+                if (it->is_regular_file(ec) && companion_extension(lower_extension(it->path().string())))
+                    candidates.push_back(dir / fs::relative(it->path(), own, ec));
     }
     std::sort(candidates.begin(), candidates.end());
     std::string text = read_lower(mesh, kCompanionSearchBytes);

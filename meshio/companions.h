@@ -1,9 +1,11 @@
 // The files beside a mesh file that its import may read as well: an OBJ's material library and
 // the images it names, a glTF's buffers and images, the textures a Collada, FBX or 3DS file
 // names. Found without importing: every regular file in the mesh file's folder or below it (two
-// levels down) with an image, material-library or buffer extension whose name appears in the
-// mesh file, or in a material library found so, compared without case. So a stage cache keyed by
-// the mesh file's bytes also sees a texture or a buffer change.
+// levels down), or in a folder beside that folder (the first kSiblingFolders in name order:
+// models/ and textures/ side by side, where the appearance reader looks too), with an image,
+// material-library or buffer extension whose name appears in the mesh file (read as text, a
+// UTF-16 file's NULs left out), or in a material library found so, compared without case. So a
+// stage cache keyed by the mesh file's bytes also sees a texture or a buffer change.
 #pragma once
 
 #include <string>
@@ -15,8 +17,11 @@ namespace shatter {
 // names: a folder or a file past either gives the files found within them.
 inline constexpr size_t kCompanionCandidates = 4096;
 inline constexpr size_t kCompanionSearchBytes = size_t(256) << 20;
+// Folders beside the mesh file's own searched for the files it names (not below them).
+inline constexpr size_t kSiblingFolders = 64;
 
-// Paths relative to the mesh file's folder, '/'-separated, sorted.
+// Paths relative to the mesh file's folder ("../textures/wood.png" for one beside it),
+// '/'-separated, sorted.
 std::vector<std::string> companion_files(const std::string& mesh_path);
 
 }  // namespace shatter

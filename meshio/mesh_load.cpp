@@ -482,6 +482,11 @@ TriangleMesh load_mesh(const std::string& path, double scale) {
 
 std::string read_file_head(const std::string& path, size_t bytes) {
     std::ifstream in(path, std::ios::binary);
+    // No more than the file holds: callers ask for up to kCompanionSearchBytes (256 MB), and
+    // filling that much for a small file cost a tenth of a second per call.
+    std::error_code ec;
+    const uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size < bytes) bytes = size_t(size);
     std::string head(bytes, '\0');
     in.read(head.data(), std::streamsize(head.size()));
     head.resize(size_t(in.gcount()));
