@@ -59,9 +59,10 @@ std::vector<std::string> files_named(const std::filesystem::path& dir, const std
 // bare name in that folder (exporters often keep the path of the machine they ran on); then that
 // bare name in any letter case (files made on Windows name "IMAGE1.JPG" for IMAGE1.jpg), in the
 // mesh file's folder, then in the folders in it ("textures/", as downloads ship them), then in
-// the folders beside it (models/ and textures/ side by side), the first in name order; then the written path's last folders and name under the folders up to
-// kTextureFolderUp above the mesh file's (a project moved from where it was made:
-// D:\...\models\OBJ\wood.jpg named by models/FBX/spider.fbx is models/OBJ/wood.jpg).
+// the folders beside it (models/ and textures/ side by side), the first in name order; then the
+// written path's last folders and name under the folders up to kTextureFolderUp above the mesh
+// file's (a project moved from where it was made: D:\...\models\OBJ\wood.jpg named by
+// models/FBX/spider.fbx is models/OBJ/wood.jpg).
 std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::replace(name.begin(), name.end(), '\\', '/');
     const std::filesystem::path dir = std::filesystem::path(mesh_path).parent_path();
@@ -81,9 +82,10 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     if (found.empty() && own.has_relative_path()) {
         std::vector<std::string> siblings;
         files_named(own.parent_path(), "", &siblings);
+        std::erase(siblings, own.string());
         std::sort(siblings.begin(), siblings.end());
         for (size_t i = 0; found.empty() && i < siblings.size() && i < kSiblingFolders; ++i)
-            if (std::filesystem::path(siblings[i]) != own) found = files_named(siblings[i], wanted, nullptr);
+            found = files_named(siblings[i], wanted, nullptr);
     }
     if (!found.empty()) return found.front();
     std::vector<std::string> parts;  // the written path's folders, without a drive or root
