@@ -76,16 +76,12 @@ std::string find_texture_file(const std::string& mesh_path, std::string name) {
     std::sort(folders.begin(), folders.end());
     for (size_t i = 0; found.empty() && i < folders.size(); ++i) found = files_named(folders[i], wanted, nullptr);
     // The folders beside the mesh file's own (models/ and textures/ side by side, as game mods
-    // and asset packs keep them), the first kSiblingFolders in name order (as companion_files).
-    std::filesystem::path own = std::filesystem::absolute(dir.empty() ? "." : dir, ec).lexically_normal();
-    if (own.filename().empty()) own = own.parent_path();
-    if (found.empty() && own.has_relative_path()) {
-        std::vector<std::string> siblings;
-        files_named(own.parent_path(), "", &siblings);
-        std::erase(siblings, own.string());
-        std::sort(siblings.begin(), siblings.end());
-        for (size_t i = 0; found.empty() && i < siblings.size() && i < kSiblingFolders; ++i)
-            found = files_named(siblings[i], wanted, nullptr);
+    // and asset packs keep them), as companion_files searches them.
+    if (found.empty()) {
+        for (const std::filesystem::path& folder : folders_beside(dir)) {
+            found = files_named(folder, wanted, nullptr);
+            if (!found.empty()) break;
+        }
     }
     if (!found.empty()) return found.front();
     std::vector<std::string> parts;  // the written path's folders, without a drive or root

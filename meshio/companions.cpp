@@ -30,6 +30,20 @@ bool companion_extension(const std::string& ext) {
 
 }  // namespace
 
+std::vector<fs::path> folders_beside(const fs::path& dir) {
+    std::error_code ec;
+    fs::path own = fs::absolute(dir.empty() ? fs::path(".") : dir, ec).lexically_normal();
+    if (own.filename().empty()) own = own.parent_path();
+    std::vector<fs::path> folders;
+    if (!own.has_relative_path()) return folders;
+    for (fs::directory_iterator it(own.parent_path(), fs::directory_options::skip_permission_denied, ec), end;
+         !ec && it != end; it.increment(ec))
+        if (it->is_directory(ec) && it->path() != own) folders.push_back(it->path());
+    std::sort(folders.begin(), folders.end());
+    if (folders.size() > kSiblingFolders) folders.resize(kSiblingFolders);
+    return folders;
+}
+
 std::vector<std::string> companion_files(const std::string& mesh_path) {
     const fs::path mesh(mesh_path);
     const fs::path dir = mesh.has_parent_path() ? mesh.parent_path() : fs::path(".");
@@ -42,21 +56,11 @@ std::vector<std::string> companion_files(const std::string& mesh_path) {
         if (companion_extension(lower_extension(it->path().string()))) candidates.push_back(it->path());
     }
     // The folders beside the mesh file's own: their files, not below.
-    fs::path own = fs::absolute(dir, ec).lexically_normal();
-    if (own.filename().empty()) own = own.parent_path();
-    if (own.has_relative_path()) {
-        std::vector<fs::path> siblings;
-        for (fs::directory_iterator it(own.parent_path(), fs::directory_options::skip_permission_denied, ec), end;
-             !ec && it != end; it.increment(ec))
-            if (it->is_directory(ec) && it->path() != own) siblings.push_back(it->path());
-        std::sort(siblings.begin(), siblings.end());
-        if (siblings.size() > kSiblingFolders) siblings.resize(kSiblingFolders);
-        for (const fs::path& folder : siblings)
-            for (fs::directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
-                 !ec && it != end && candidates.size() < kCompanionCandidates; it.increment(ec))
-                if (it->is_regular_file(ec) && companion_extension(lower_extension(it->path().string())))
-                    candidates.push_back(dir / fs::relative(it->path(), own, ec));
-    }
+    for (const fs::path& folder : folders_beside(dir))
+        for (fs::directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec), end;
+             !ec && it != end && candidates.size() < kCompanionCandidates; it.increment(ec))
+            if (it->is_regular_file(ec) && companion_extension(lower_extension(it->path().string())))
+                candidates.push_back(dir / ".." / folder.filename() / it->path().filename());
     std::sort(candidates.begin(), candidates.end());
     std::string text = read_lower(mesh, kCompanionSearchBytes);
     std::vector<std::string> found;

@@ -8,6 +8,7 @@
 // stage cache keyed by the mesh file's bytes also sees a texture or a buffer change.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ inline constexpr size_t kCompanionCandidates = 4096;
 inline constexpr size_t kCompanionSearchBytes = size_t(256) << 20;
 // Folders beside the mesh file's own searched for the files it names (not below them).
 inline constexpr size_t kSiblingFolders = 64;
+
+// The folders beside `dir` (the other folders in its parent, as absolute paths), the first
+// kSiblingFolders in name order: where models/ and textures/ sit side by side. Empty for a root.
+std::vector<std::filesystem::path> folders_beside(const std::filesystem::path& dir);
 
 // Paths relative to the mesh file's folder ("../textures/wood.png" for one beside it),
 // '/'-separated, sorted.

@@ -9,10 +9,10 @@
 // A frame's bytes are also the renderer's: a point release of Mesa's software rasterizer
 // (Debian's libosmesa6) moves pixels by a level here and there, and so does the processor it
 // compiles its shaders for (llvmpipe's JIT uses what the processor has: on a machine with
-// AVX-512, code that draws the same and the same package gave other frame bytes for every scene,
-// and the same model and trajectory bytes). The pins record the renderer's package version and the processor's widest vector
-// instructions; where either differs the frames are not compared (the test says so), the model
-// and trajectory bytes still are.
+// AVX-512, code that draws the same and the same package gave other frame bytes for every
+// scene, and the same model and trajectory bytes). The pins record the renderer's package
+// version and the processor's widest vector instructions; where either differs the frames are
+// not compared (the test says so), the model and trajectory bytes still are.
 #include <gtest/gtest.h>
 
 #include <cstdio>
