@@ -8,6 +8,7 @@
 #include "bench/fem_contact.h"
 #include "bench/fem_interfaces.h"
 #include "core/scene_settings.h"
+#include "simulate/surface_pair.h"
 
 namespace shatter::fem {
 
@@ -73,16 +74,20 @@ FemBeamResult run_fem_beam(uint32_t cells, double h, FemIntegrator integrator, d
     fs.integrator = integrator;
     FemSolid solid(in.split().mesh, fs);
     in.apply(solid);
-    // The study's beam scene (bench/study_scenes.cpp): posts and block keys.
+    // The study's beam scene (bench/study_scenes.cpp): posts and block keys, and the frictions of
+    // its pairs: the beam's 0.4 against the ground's 0.3 and the posts' and block's 0.5.
+    const SurfaceSettings prop;
+    const double beam_friction = 0.4;
     ContactSettings cs;
-    cs.ground_friction = 0.3;
+    cs.ground_friction = pair_friction(beam_friction, 0.3);
+    const double on_prop = pair_friction(beam_friction, prop.friction);
     const auto fixed = [](Vec3 c) { return [c](double) { return c; }; };
-    cs.boxes.push_back({Vec3(0.02, 0.15, 0.02), fixed(Vec3(-0.2, 0.15, -0.0355)), 0.4});
-    cs.boxes.push_back({Vec3(0.02, 0.15, 0.02), fixed(Vec3(0.2, 0.15, -0.0355)), 0.4});
+    cs.boxes.push_back({Vec3(0.02, 0.15, 0.02), fixed(Vec3(-0.2, 0.15, -0.0355)), on_prop});
+    cs.boxes.push_back({Vec3(0.02, 0.15, 0.02), fixed(Vec3(0.2, 0.15, -0.0355)), on_prop});
     KinematicSettings block;
     block.shape.size = Vec3(0.08, 0.06, 0.06);
     block.keys = {{0, Vec3(0, 0.032, 0.1)}, {0.2, Vec3(0, 0.032, 0.046)}, {1.5, Vec3(0, 0.032, 0.02)}};
-    cs.boxes.push_back({0.5 * block.shape.size, [block](double t) { return kinematic_position(block, t); }, 0.4});
+    cs.boxes.push_back({0.5 * block.shape.size, [block](double t) { return kinematic_position(block, t); }, on_prop});
     attach_contact(solid, cs);
     // Start at rest, undeformed, on the ground (it settles into the ground contact by m g / k,
     // micrometres, within the first milliseconds).

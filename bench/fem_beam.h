@@ -2,8 +2,9 @@
 // 0.03 m halves on the ground, pushed by a kinematic block between two posts) run by the
 // continuum reference: the same geometry, glass's E = 70 GPa, nu = 0.22, rho = 2500 kg/m^3 and
 // tensile (and shear) strength 40 MPa, the same posts, block keys, gravity and ground, with
-// penalty contact (bench/fem_contact.h; friction 0.3 on the ground, 0.4 on the posts and the
-// block) and the score between the halves as interface ties (bench/fem_interfaces.h). The
+// penalty contact (bench/fem_contact.h; each pair's friction as the rigid method has it,
+// simulate/surface_pair.h: 0.35 on the ground, 0.45 on the posts and the block) and the score
+// between the halves as interface ties (bench/fem_interfaces.h). The
 // beam is n x n x 20n cubes of 6 Kuhn tets (n cells across).
 #pragma once
 

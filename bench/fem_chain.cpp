@@ -47,7 +47,7 @@ FemChainResult run_fem_chain(uint32_t cells, double h, double h_after, double af
     solid.drive(right, Vec3(drive_speed, 0, 0));
     in.apply(solid);
     ContactSettings cs;
-    cs.ground_friction = 0.5;
+    cs.ground_friction = 0.5;  // the links' 0.5 on the ground's 0.5 (simulate/surface_pair.h)
     attach_contact(solid, cs);
     // Still until 0.3 s (the links at rest on the ground, undeformed), then driven apart.
     const double t_start = 0.3;

@@ -30,7 +30,7 @@ namespace shatter::fem {
 struct FemSceneSettings {
     FemMaterial material;        // density (the model's), Young's modulus, Poisson's ratio
     Strength strength;           // the shot's tensile strength, for shear as well
-    double friction = 0.5;       // the object's; a contact's is this times the obstacle's (Bullet's default)
+    double friction = 0.5;       // the object's; a contact's is the pair's (simulate/surface_pair.h)
     uint32_t box_cells = 3;      // box models: cells across a box's shortest side
     uint32_t refine = 0;         // tet models: 1:8 subdivisions
     double h = 2e-5, h_after = 1e-4;  // (unit: s)

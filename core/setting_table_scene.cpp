@@ -334,10 +334,10 @@ SettingsSection material_section() {
                  .flag("--alpha"),
              preset_overridable(number("friction", "1",
                                        at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::friction),
-                                       kFrictionLimits, "Coulomb friction coefficient of the pieces")),
+                                       kFrictionLimits, "Coulomb friction coefficient of the pieces; two surfaces in contact take the geometric mean of theirs (docs/physics.md section 5d)")),
              preset_overridable(number("restitution", "1",
                                        at(&Shot::material, &MaterialSettings::surface, &SurfaceSettings::restitution),
-                                       kRestitutionLimits, "bounciness of the pieces")),
+                                       kRestitutionLimits, "bounciness of the pieces (restitution); two surfaces in contact take the larger of theirs")),
              boolean("stiffen", at(&Shot::material, &MaterialSettings::stiffen),
                      "raise a stiffness too soft for the step (CFM above max_cfm) to the least that converges, times "
                      "1.05, and log it, instead of refusing the shot; the default shot of `shatter run MESH` turns it on")

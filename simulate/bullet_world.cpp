@@ -19,6 +19,7 @@
 #include "simulate/bullet_solver.h"
 #include "simulate/compliant_constraint.h"
 #include "simulate/spring.h"
+#include "simulate/surface_pair.h"
 
 namespace shatter {
 
@@ -40,6 +41,14 @@ private:
     btTransform start_;
     std::function<Vec3(double)> offset_;
 };
+
+// A pair's friction and restitution from its two bodies': simulate/surface_pair.h.
+btScalar combined_friction(const btCollisionObject* a, const btCollisionObject* b) {
+    return btScalar(pair_friction(a->getFriction(), b->getFriction()));
+}
+btScalar combined_restitution(const btCollisionObject* a, const btCollisionObject* b) {
+    return btScalar(pair_restitution(a->getRestitution(), b->getRestitution()));
+}
 
 }  // namespace
 
@@ -175,6 +184,13 @@ BulletWorld::BulletWorld(const Model& model, const WorldSetup& setup)
       setup_(setup) {
     Impl& m = *impl_;
     m.dispatcher.setNearCallback(exact_aabb_near_callback);
+    // Bullet's rules are process-wide: set once, for every world.
+    static const bool combine_rules_set = [] {
+        gCalculateCombinedFrictionCallback = combined_friction;
+        gCalculateCombinedRestitutionCallback = combined_restitution;
+        return true;
+    }();
+    (void)combine_rules_set;
     m.workers = std::make_unique<Workers>(setup.threads ? setup.threads : default_threads());
     m.dispatcher.workers = m.workers.get();
     // Only active bodies' boxes follow them (every body is kept active but in rigid flight).

@@ -57,11 +57,15 @@ TEST(PaperScenes, TheBeamBreaksAtTheScoreAndGivesBackAlphaTimesItsStoredEnergy) 
         expect_books_balance(r, alpha);
         EXPECT_EQ(fragments(model, r), 2u);
         // The break comes from the block's slow push, the same in every run: the pieces are
-        // nearly at rest, and what they move with right after is what the break gave back.
+        // nearly at rest, and what they move with right after is what the break gave back. The
+        // halves are pressed on the posts and the block, whose friction takes most of it by the
+        // next frame (7 ms on): each 0.5 of alpha still adds a twentieth of its 0.5 E there.
         const double t0 = r.breaks.front().time;
         EXPECT_LT(kinetic_at(r, t0 - 1.0 / 30), 0.01);
         const double after = kinetic_at(r, t0);
-        EXPECT_GT(after, previous + 0.02) << "alpha " << alpha;
+        double energy = 0;  // E: what the breaking joints stored
+        for (const BreakRecord& b : r.breaks) energy += b.kicks.stored_energy;
+        EXPECT_GT(after, previous + 0.05 * 0.5 * energy) << "alpha " << alpha;
         previous = after;
         // Its four joints break in one step. Each break's energy is counted in the pair's frame
         // from before that step's kicks (the halves nearly at rest), so even the paper's kicks,
