@@ -178,10 +178,12 @@ FemSceneResult run_fem_scene(const Model& model, const SceneSettings& scene, con
     cs.ground_friction = pair_friction(s.friction, scene.ground_surface.friction);
     for (const ColliderSettings& c : scene.colliders) {
         if (c.shape.kind == ShapeKind::Sphere) {
-            cs.spheres.push_back({c.pose.position, c.shape.radius, pair_friction(s.friction, c.surface.friction)});
+            cs.spheres.push_back(
+                {c.pose.position, c.shape.radius, pair_friction(s.friction, c.surface.friction)});
         } else if (c.shape.kind == ShapeKind::Box && c.pose.rotation_deg.squaredNorm() == 0) {
             const Vec3 centre = c.pose.position;
-            cs.boxes.push_back({0.5 * c.shape.size, [centre](double) { return centre; }, pair_friction(s.friction, c.surface.friction)});
+            cs.boxes.push_back({0.5 * c.shape.size, [centre](double) { return centre; },
+                                pair_friction(s.friction, c.surface.friction)});
         } else {
             throw std::invalid_argument("run_fem_scene: colliders are spheres and axis-aligned boxes only");
         }

@@ -1,5 +1,5 @@
 #pragma once
-// How two surfaces in contact combine their friction and restitution (docs/physics.md section 6).
+// How two surfaces in contact combine their friction and restitution (docs/physics.md section 5d).
 // A material against itself keeps its own figures, as the presets and docs/shot.md give them:
 // friction is the geometric mean of the two coefficients, restitution the larger of the two.
 // Bullet's own rule multiplies both (ice on ice 0.0025 for ice's 0.05; two surfaces of
