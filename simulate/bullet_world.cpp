@@ -1118,7 +1118,7 @@ Vec3 BulletWorld::centre_velocity(const std::vector<uint32_t>& pieces) const {
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (uint32_t p : pieces) {
-        if (!impl_->pieces[p].dynamic) continue;
+        if (!impl_->pieces[p].dynamic) return Vec3::Zero();
         const btRigidBody& b = *impl_->pieces[p].body;
         mass += 1.0 / b.getInvMass();
         momentum += to_eigen(b.getLinearVelocity()) / b.getInvMass();
