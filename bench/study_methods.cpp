@@ -110,7 +110,8 @@ bool section_continuum(const Options& opt, Headlines&) {
 }
 
 // Wall time per simulated second by stage: building the model, simulating (energizing apart),
-// rendering (1280 x 720, shadows, 4x MSAA, 8 frames timed after 2 warm-up frames).
+// rendering (1280 x 720, shadows, the default edge filter for anti-aliasing; 8 frames timed after 2
+// warm-up frames).
 bool section_speed(const Options& opt, Headlines&) {
     Csv csv(opt.out, "speed.csv",
             "scene,bodies,constraints,prescore_s,simulate_per_sim_s,energize_per_sim_s,render_per_sim_s,"
