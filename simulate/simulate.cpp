@@ -158,8 +158,8 @@ public:
         if (start) world_.step();
         // Each break's energy is counted in its pair's frame in the state the kicks act on (the
         // re-run one after a rollback), before any of this step's kicks: docs/physics.md section 4.
-        // With joined kicks, in the frame of everything joined to the two pieces (the world's when that
-        // holds a static or kinematic piece: an anchor takes the momentum the kicks give it).
+        // With joined kicks, in the frame of everything joined to the two pieces (the world's when
+        // that holds a static or kinematic piece: an anchor takes the momentum the kicks give it).
         // (Energizing's time, for the benchmark, from here: finding what each kick moves is its work.)
         const auto start_energize = std::chrono::steady_clock::now();
         std::vector<Vec3> frames;
