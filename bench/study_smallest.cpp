@@ -28,6 +28,7 @@
 #include "core/fragments.h"
 #include "core/shot.h"
 #include "prescore/prescore.h"
+#include "simulate/simulate.h"
 
 namespace shatter::study {
 
@@ -269,11 +270,15 @@ struct Tolerance {
     double kinetic_rel = kInf;      // the kinetic energy 0.1 s after the first break, relative
     double spread_rel = kInf;       // its spread about the pieces' common centre, relative
     double early = kInf;            // (unit: m) RMS over the 0.1 s after the reference's first break
+    // The joints' largest residual before the first break (unit: 1, of the strength), in any run:
+    // a model whose solve left the joints' forces off their stretch does not serve, however close
+    // its motion (its books miss the difference: docs/physics.md section 5a).
+    double residual = kInf;
 };
 
 struct Deviation {
     double trajectory = NAN, first_break = NAN, broken_fraction = NAN, fragments = NAN, scatter_rel = NAN,
-           kinetic_rel = NAN, spread_rel = NAN, early = NAN;
+           kinetic_rel = NAN, spread_rel = NAN, early = NAN, residual = NAN;
     Tolerance tol;        // what each was held to (for an ensemble: the floor or the noise, the larger)
     double worst = kInf;  // largest deviation / tolerance; <= 1 passes
 };
@@ -311,6 +316,8 @@ Deviation deviation(const Ensemble& run, const Ensemble& ref, const Tolerance& f
     if (!run.ok() || run.runs.size() != ref.runs.size()) return dv;
     const Run& r0 = ref.first();
     const double t0 = std::isnan(r0.s.first_break) ? 0 : r0.s.first_break;
+    dv.residual = 0;
+    for (const Run& r : run.runs) dv.residual = std::max(dv.residual, r.o.sim.residual_before_break.residual);
     auto rms = [&](const Run& a, const Run& b, double from, double until) {
         return trajectory_rms(a.c.model, a.o.sim.trajectory, b.c.model, b.o.sim.trajectory, from, until);
     };
@@ -366,8 +373,8 @@ Deviation deviation(const Ensemble& run, const Ensemble& ref, const Tolerance& f
     for (auto [x, t] : {std::pair{dv.trajectory, dv.tol.trajectory}, {dv.first_break, dv.tol.first_break},
                         {dv.broken_fraction, dv.tol.broken_fraction}, {dv.fragments, dv.tol.fragments},
                         {dv.scatter_rel, dv.tol.scatter_rel}, {dv.kinetic_rel, dv.tol.kinetic_rel},
-                        {dv.spread_rel, dv.tol.spread_rel},
-                        {dv.early, dv.tol.early}})
+                        {dv.spread_rel, dv.tol.spread_rel}, {dv.early, dv.tol.early},
+                        {dv.residual, dv.tol.residual}})
         if (std::isfinite(t) && !std::isnan(x)) dv.worst = std::max(dv.worst, x / t);
     return dv;
 }
@@ -412,7 +419,7 @@ const char* kRunHeader =
     "constraints,collision_parts,tets,substeps,breaks,first_break_s,fragments,broken_fraction,scatter_m,"
     "kinetic_after_J,spread_after_J,trajectory_rms_m,early_rms_m,d_first_break_s,d_broken_fraction,d_fragments,"
     "d_scatter_rel,d_kinetic_rel,d_spread_rel,tol_first_break_s,tol_broken_fraction,tol_fragments,tol_scatter_rel,"
-    "tol_kinetic_rel,tol_spread_rel,tol_early_m,worst_ratio,pass";
+    "tol_kinetic_rel,tol_spread_rel,tol_early_m,residual,tol_residual,worst_ratio,pass";
 
 // One model: its size and cost, the means of its drops, and its deviation from the finest.
 std::string run_row(const std::string& shot, const std::string& role, const std::string& knob, const std::string& value,
@@ -431,7 +438,7 @@ std::string run_row(const std::string& shot, const std::string& role, const std:
     }
     const double cpu = e.mean_cpu_seconds();
     return fmt::format(
-        "{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        "{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
         shot, role, knob, value, join(settings, " "), e.runs.size(), refused, complete, d(r.c.prescore_seconds), d(cpu),
         d(cpu / w), d(wall / w), r.c.model.pieces.size(), r.c.model.constraints.size(), collision_parts_of(r.c.model),
         r.c.model.mesh.tets.size(), r.c.input.simulate.substeps,
@@ -444,8 +451,8 @@ std::string run_row(const std::string& shot, const std::string& role, const std:
         d(mean_of(e.each([](const Run& x) { return x.s.spread_after; }))), d(dv.trajectory), d(dv.early),
         d(dv.first_break), d(dv.broken_fraction), d(dv.fragments), d(dv.scatter_rel), d(dv.kinetic_rel),
         d(dv.spread_rel), d(dv.tol.first_break), d(dv.tol.broken_fraction), d(dv.tol.fragments),
-        d(dv.tol.scatter_rel), d(dv.tol.kinetic_rel), d(dv.tol.spread_rel), d(dv.tol.early), d(dv.worst),
-        dv.worst <= 1 ? 1 : 0);
+        d(dv.tol.scatter_rel), d(dv.tol.kinetic_rel), d(dv.tol.spread_rel), d(dv.tol.early), d(dv.residual),
+        d(dv.tol.residual), d(dv.worst), dv.worst <= 1 ? 1 : 0);
 }
 
 std::string values_text(const ShotSpec& spec, const std::vector<double>& v) {
@@ -494,6 +501,7 @@ void study_shot(const ShotSpec& spec, const Options& opt, Csv& runs, Csv& summar
     // The floors: what a viewer would not see.
     Tolerance floor;
     floor.first_break = 1 / base.simulate.fps;
+    floor.residual = kResidualTolerance;
     const double one_percent = 0.01 * diagonal_of(ref.first().c.model);
     if (spec.measure == Measure::Trajectory) {
         floor.trajectory = one_percent;
