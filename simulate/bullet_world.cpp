@@ -1114,7 +1114,7 @@ void BulletWorld::add_velocities(const std::vector<uint32_t>& pieces, const std:
     }
 }
 
-Vec3 BulletWorld::centre_velocity(const std::vector<uint32_t>& pieces) const {
+Vec3 BulletWorld::frame_velocity(const std::vector<uint32_t>& pieces) const {
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (uint32_t p : pieces) {

@@ -224,10 +224,11 @@ public:
                        std::vector<VelocityChange>* velocities) const;
     // Adds dv[i] to the velocities of piece pieces[i].
     void add_velocities(const std::vector<uint32_t>& pieces, const std::vector<VelocityChange>& dv);
-    // The velocity of the centre of mass of the given pieces (unit: m/s); zero when one of them is
-    // static or kinematic (or none is given): a body of infinite mass is at rest in the frame where
-    // momentum is counted, as pair_frame_velocity takes it (docs/physics.md section 4).
-    Vec3 centre_velocity(const std::vector<uint32_t>& pieces) const;
+    // The frame a break's kicks on these pieces are counted in (unit: m/s): the velocity of their
+    // centre of mass, or zero when one of them is static or kinematic (or none is given): a body of
+    // infinite mass is at rest in the frame where momentum is counted, as pair_frame_velocity takes
+    // it (docs/physics.md section 4).
+    Vec3 frame_velocity(const std::vector<uint32_t>& pieces) const;
     // The kinetic energy of the given pieces' dynamic ones in a frame moving at velocity `frame`
     // and in the world's (unit: J). `inertia` holds each dynamic piece's inertia tensor in the
     // world frame, in order: worked out when empty, else taken from there (for the same poses: a

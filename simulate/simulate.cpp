@@ -174,7 +174,7 @@ public:
             if (energize_.bodies == KickBodies::Joined) {
                 joined[i].emplace();
                 world_.joined_pieces(broken[i], kJoinedPiecesLimit, fragments_, &*joined[i]);
-                frames.push_back(world_.centre_velocity(joined[i]->pieces));
+                frames.push_back(world_.frame_velocity(joined[i]->pieces));
             } else {
                 Vec3 pivot;
                 const std::array<BodyAtPivot, 2> now = world_.bodies_at_pivot(broken[i], &pivot);
