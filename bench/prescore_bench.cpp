@@ -8,16 +8,15 @@
 #include <string>
 #include <vector>
 
-#include <spdlog/spdlog.h>
-
 #include "core/atomic_file.h"
+#include "core/log.h"
 #include "core/model_io.h"
 #include "prescore/prescore.h"
 
 using namespace shatter;
 
 int main(int argc, char** argv) {
-    spdlog::set_level(spdlog::level::warn);
+    setup_logging("warn");  // to standard error: standard output is the CSV
     const std::string mesh = argc > 1 ? argv[1] : "/usr/share/glmark2/models/bunny.obj";
     const std::string out = "/tmp/shatter-bench-prescore.model";
     const std::vector<double> resolutions = {10, 20, 30, 40, 60, 80};

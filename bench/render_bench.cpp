@@ -12,8 +12,7 @@
 #include <filesystem>
 #include <string>
 
-#include <spdlog/spdlog.h>
-
+#include "core/log.h"
 #include "core/shot.h"
 #include "prescore/prescore.h"
 #include "render/render.h"
@@ -22,7 +21,7 @@
 using namespace shatter;
 
 int main(int argc, char** argv) {
-    spdlog::set_level(spdlog::level::warn);
+    setup_logging("warn");  // to standard error: standard output is the CSV
     const std::string shot_path = argc > 1 ? argv[1] : std::string(SHATTER_SOURCE_DIR) + "/assets/bunny.toml";
     const Shot shot = load_shot(shot_path);
     const Model model = prescore(shot.mesh, shot.prescore, nullptr);

@@ -15,10 +15,10 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
-#include <spdlog/spdlog.h>
-
+#include "core/log.h"
 #include "prescore/prescore.h"
 #include "scenes/box_model.h"
 #include "simulate/simulate.h"
@@ -52,12 +52,12 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
         const auto* bytes = reinterpret_cast<const unsigned char*>(f);
         for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
     }
-    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u\n", name,
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u,%.1f\n", name,
                 solves_joints_directly(model, in.simulate) ? "+direct" : "", model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
                 double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
-                100.0 * r.energize_seconds / s, r.asleep);
+                100.0 * r.energize_seconds / s, r.asleep, r.steps ? double(r.solver_iterations) / double(r.steps) : 0.0);
     std::fflush(stdout);
 }
 
@@ -83,7 +83,8 @@ SimulationInput plate_drop(double duration, uint32_t n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    spdlog::set_level(getenv("SHATTER_BENCH_LOG") ? spdlog::level::info : spdlog::level::warn);
+    // The log goes to standard error: standard output is the CSV (make bench keeps it).
+    setup_logging(getenv("SHATTER_BENCH_LOG") ? "info" : "warn");
     const std::string only = argc > 1 ? argv[1] : "";
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
@@ -96,7 +97,7 @@ int main(int argc, char** argv) {
     if (argc > 7) g_sleep = std::string(argv[7]) != "awake";
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
-                "energize_percent,asleep\n");
+                "energize_percent,asleep,iterations_per_step\n");
 
     if (wanted("bunny")) {
     MeshSettings mesh;

@@ -40,7 +40,7 @@ struct Headlines {
     // joints (simulate/bullet_solver.h) is stable, of all such cells.
     size_t direct_stable_heavy = 0, direct_cells_heavy = 0;
     // mass x alpha map, every mass ratio, alpha 0 to 10: cells where the shipped method with the
-    // shipped joints ("auto": direct above a ratio of 10) is stable, of all such cells.
+    // shipped joints ("auto": direct up to 100 pieces) is stable, of all such cells.
     size_t shipped_stable = 0, shipped_cells = 0;
     // smallest: per shot, the largest deviation / tolerance of the shot as shipped and of the
     // chosen model (quick: the shipped one), against the finest model (<= 1 passes).

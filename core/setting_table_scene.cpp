@@ -378,7 +378,8 @@ SettingsSection simulate_section() {
                     "simulated time; frames are recorded at 0, 1/fps, ... up to duration. \"auto\": until every piece "
                     "has been at rest for 0.5 s (its centre no faster than the rest speed between frames, and no point "
                     "of it farther than the rest speed x 0.5 s from where it was; the rest speed 0.02 m/s, or 0.04 "
-                    "object sizes per second for an object over 0.5 m across), checked at each frame, at most "
+                    "object sizes per second for an object over 0.5 m across, and once it has landed 0.04 times the "
+                    "spread of the 90% of its mass nearest its centre when that is more), checked at each frame, at most "
                     "max_duration; the movie then ends 0.5 s after the last piece comes to rest",
                     read_duration)
                  .json([](const Shot& s, ojson& j) {
@@ -410,10 +411,11 @@ SettingsSection simulate_section() {
                                 "all joint rows solved at once in every iteration (a sparse LDL^T), so their forces "
                                 "match their springs whatever the pieces' mass ratios; the contacts iterated around "
                                 "them, and a contact that holds a light piece under heavy joined ones through the "
-                                "joints (docs/physics.md, \"Direct joints\"); \"auto\": direct when two joined "
-                                "pieces' masses differ by more than 10 times, or two pieces of one island of joined "
-                                "pieces by more than 30 times (where iterative joints start to fail: docs/accuracy.md, "
-                                "\"The stability map\"), in a model of at most 100 pieces, else iterative")
+                                "joints (docs/physics.md, \"Direct joints\"); \"auto\": direct in a model of at most "
+                                "100 pieces, iterative in a larger one (where direct joints cost 2 to 5 times as "
+                                "much), which is warned when two joined pieces' masses differ by more than 10 times "
+                                "or two pieces of one island by more than 30 (where iterative joints start to fail: "
+                                "docs/accuracy.md, \"The stability map\")")
                  .flag("--joints")
                  .json_unless_default(),
              method(),

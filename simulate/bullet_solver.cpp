@@ -188,9 +188,10 @@ btScalar PieceSolver::solveSingleIteration(int iteration, btCollisionObject** bo
     btScalar residual = 0;
     const auto add = [&residual](btScalar r) { residual = btMax(residual, r * r); };
     if (direct_ && direct_system_->ok) {
-        // The rows' own impulses are needed where the convergence is checked (from the step's last
-        // own iteration on) and where the iterations stop without a check.
-        add(solve_joints_directly(false, extra_ || !(tolerance_ > 0) || iteration + 1 >= own_iterations_));
+        // The convergence is checked from the step's last own iteration on, up to the first row
+        // past the tolerance (the rows' impulses are set by the solve after the last iteration);
+        // without a tolerance the rows are set wherever the iterations may stop.
+        add(solve_joints_directly(false, extra_ || !(tolerance_ > 0) || iteration + 1 >= own_iterations_, true));
     } else if (tolerance_ > 0 && compact_) {
         btScalar most = 0;
         for (int j = 0; j < m_tmpSolverNonContactConstraintPool.size(); ++j) {
@@ -410,7 +411,7 @@ void PieceSolver::factor_body_space() {
 // the bodies' velocities change by z. The iteration needs one sparse product and one solve in
 // the bodies' space; one pass over the rows sets each row's l' (for the write-back and the books)
 // and finds the largest correction.
-btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
+btScalar PieceSolver::solve_joints_directly(bool push, bool rows, bool decide) {
     Direct& d = *direct_system_;
     const int n = m_tmpSolverNonContactConstraintPool.size();
     const int unknowns = int(d.bodies.size()) * 6;
@@ -457,6 +458,27 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
         d.have_last = true;
         return 0;
     }
+    // Where the correction only decides whether the iterations go on, it is measured up to the
+    // first row past the tolerance, and the rows' impulses are left to the solve after the last
+    // iteration, which sets them all (from the velocities alone: the same impulses).
+    // J v of a row, v in the moving bodies' space.
+    const auto along = [&d](const btSolverConstraint& c, const Eigen::VectorXd& v) {
+        double jv = 0;
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0) jv += row_jacobian(c, true).dot(v.segment<6>(k));
+        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0) jv += row_jacobian(c, false).dot(v.segment<6>(k));
+        return jv;
+    };
+    if (decide && d.have_last && tolerance_ > 0) {
+        d.last_u = u - d.last_u;  // the change since the last solve
+        btScalar most = 0;
+        for (int r = 0; r < n && most <= tolerance_; ++r) {
+            const btScalar delta = btScalar(-d.inv_cfm[size_t(r)] * along(m_tmpSolverNonContactConstraintPool[r], d.last_u));
+            if (r < row_scale_.size()) most = btMax(most, btFabs(delta) * row_scale_[r]);
+        }
+        d.last_u = u;
+        joint_residual_ = most;
+        return 0;
+    }
     // Each row's own impulse l' = C^-1 (b - J (u + z)), and the largest correction.
     if (d.have_last)
         d.last_u = u - d.last_u;  // now the change since the last solve
@@ -465,17 +487,7 @@ btScalar PieceSolver::solve_joints_directly(bool push, bool rows) {
     btScalar largest = 0, most = 0;
     for (int r = 0; r < n; ++r) {
         btSolverConstraint& c = m_tmpSolverNonContactConstraintPool[r];
-        double ju = 0, jdu = 0;
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdA)]; k >= 0) {
-            const Vec6 j = row_jacobian(c, true);
-            ju += j.dot(u.segment<6>(k));
-            jdu += j.dot(d.last_u.segment<6>(k));
-        }
-        if (const int k = d.body_index[size_t(c.m_solverBodyIdB)]; k >= 0) {
-            const Vec6 j = row_jacobian(c, false);
-            ju += j.dot(u.segment<6>(k));
-            jdu += j.dot(d.last_u.segment<6>(k));
-        }
+        const double ju = along(c, u), jdu = along(c, d.last_u);
         const double w = d.inv_cfm[size_t(r)];
         const btScalar l = btScalar(w * (double(c.m_rhs / c.m_jacDiagABInv) - ju));
         const btScalar delta = d.have_last ? btScalar(-w * jdu) : l - c.m_appliedImpulse;

@@ -127,8 +127,10 @@ private:
     void factor_body_space();
     // One direct solve of every joint row, on the velocities (or on the push velocities); the
     // largest correction (residual). `rows`: set each row's impulse and measure the correction
-    // (else 0 is returned and the rows catch up at the next solve that sets them).
-    btScalar solve_joints_directly(bool push = false, bool rows = true);
+    // (else 0 is returned and the rows catch up at the next solve that sets them). `decide`: the
+    // correction only decides whether the iterations go on (joint_residual_ is then measured up to
+    // the first row past the tolerance, 0 is returned, and the rows catch up as above).
+    btScalar solve_joints_directly(bool push = false, bool rows = true, bool decide = false);
     // Contacts that hold light joined pieces against what does not move, solved through the
     // joints: at most this many bodies' contacts, this many sweeps per iteration.
     static constexpr int kMaxAnchoredBodies = 32, kAnchoredSweeps = 8;

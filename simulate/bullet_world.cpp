@@ -75,6 +75,7 @@ struct BulletWorld::Impl {
         Vec3 model_center = Vec3::Zero();
         bool dynamic = true;
         bool may_sleep = false;  // WorldSetup::sleep_speed
+        double radius = 0;       // piece_radius (unit: m)
     };
     struct Joint {
         std::unique_ptr<CompliantPointConstraint> constraint;  // null when both ends are scripted
@@ -131,6 +132,8 @@ struct BulletWorld::Impl {
     double residual_max = 0;
     int64_t residual_worst = -1;
     bool residual_known = false;
+    // The last step's deepest contact for its piece's size (BulletWorld::last_step_deepest_contact).
+    DeepContact deepest;
     void account_step(double h);  // after a step of h (unit: s)
     static double joint_elastic(const Joint& j);  // k |d|^2 / 2 from the poses (unit: J)
     static bool asleep(const btCollisionObject& b) { return b.getActivationState() == ISLAND_SLEEPING; }
@@ -506,6 +509,7 @@ void BulletWorld::build_pieces(const Model& model) {
         Vec3 moments;
         principal_frame(piece.mass.inertia, &pb.principal, &moments);
         pb.model_center = piece.mass.center;
+        pb.radius = piece_radius(piece);
         const double mass = piece.mass.mass * scale;
         moments = (moments * scale).cwiseMax(1e-12 * mass * std::pow(std::cbrt(piece.mass.volume), 2));
         // One convex part collides as itself: convex-convex contact is far cheaper than
@@ -635,6 +639,7 @@ btVector3 mean_velocity(const btRigidBody& b, const btVector3& linear, const btV
 void BulletWorld::Impl::account_step(double h_step) {
     residual_max = 0;
     residual_worst = -1;
+    deepest = {};
     // Work w done on body b, added to a dynamic piece's sum or a driven one's (a driven piece or
     // prop, whose motion is scripted); static bodies do not move.
     auto add_work = [](const btRigidBody& b, double w, double* on_pieces, double* on_drivers) {
@@ -685,6 +690,15 @@ void BulletWorld::Impl::account_step(double h_step) {
         if (!a || !b || !(moving(*a) || moving(*b))) continue;  // kept from before a sleep
         for (int p = 0; p < manifold->getNumContacts(); ++p) {
             const btManifoldPoint& point = manifold->getContactPoint(p);
+            if (point.getDistance() < 0)
+                for (const btRigidBody* body : {a, b}) {
+                    const int piece = body->getUserIndex();  // -1: not a piece
+                    if (piece < 0) continue;
+                    const PieceBody& pb = pieces[size_t(piece)];
+                    const double depth = -double(point.getDistance());
+                    if (pb.dynamic && pb.radius > 0 && depth > deepest.depth_per_radius * pb.radius)
+                        deepest = {depth / pb.radius, depth, uint32_t(piece)};
+                }
             const btVector3 impulse = point.m_normalWorldOnB * point.m_appliedImpulse +
                                       point.m_lateralFrictionDir1 * point.m_appliedImpulseLateral1 +
                                       point.m_lateralFrictionDir2 * point.m_appliedImpulseLateral2;
@@ -1215,6 +1229,8 @@ double BulletWorld::joint_residual(size_t c) const {
     const JointStretch s = joint_stretch(c);
     return Impl::spring_residual(j, s.stretch, s.rate, s.force_on_a);
 }
+
+DeepContact BulletWorld::last_step_deepest_contact() const { return impl_->deepest; }
 
 double BulletWorld::max_joint_residual(int64_t* worst) const {
     if (impl_->residual_known) {

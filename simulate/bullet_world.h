@@ -33,6 +33,7 @@
 #include "core/model.h"
 #include "core/scene_settings.h"
 #include "core/trajectory.h"
+#include "simulate/deep_contact.h"
 #include "simulate/energized_fracture.h"
 #include "simulate/joined_response.h"
 
@@ -184,6 +185,12 @@ public:
     double joint_residual(size_t c) const;
     // The largest joint_residual over the active joints awake, and which (-1 when there is none).
     double max_joint_residual(int64_t* worst) const;
+    // The last step's deepest contact for the size of the piece in it: how far a dynamic piece was
+    // inside what it touches (the depth of the deepest point of its contacts, as the step's
+    // collision detection found them) over its radius (piece_radius). A piece that moves further
+    // in a step than its own size (a small piece at an impact's speed) may end inside the ground
+    // or another piece, where the contacts no longer push it out.
+    DeepContact last_step_deepest_contact() const;
     // Removes it from the world (its pieces may collide again when no other constraint joins them).
     void remove_constraint(size_t c);
     // The two bodies at the constraint's pivot (its mid-point), for energize().

@@ -136,10 +136,14 @@ public:
     // After a step: the residual, then the step's breaks (a rollback from `start` re-runs it).
     void after_step(SimulationResult& out, const std::shared_ptr<BulletWorld::Snapshot>& start) {
         ++out.steps;
+        out.solver_iterations += uint64_t(world_.last_step_iterations());
         int64_t worst = -1;
         const double r = world_.max_joint_residual(&worst);
         frame_residual_ = std::max(frame_residual_, r);
         if (r > out.residual.residual) out.residual = {r, world_.time(), worst};
+        const DeepContact deep = world_.last_step_deepest_contact();
+        if (deep.depth_per_radius > out.deepest.depth_per_radius)
+            out.deepest = deep, out.deepest_time = world_.time(), out.deepest_step = world_.h();
         std::vector<Overload> over = find_overloads(world_, in_.simulate.break_criterion);
         add_overlapped(over);
         const std::vector<size_t> broken = policy_.select(over, world_.time());
@@ -553,8 +557,7 @@ double largest_island_mass_ratio(const Model& model, uint32_t* heavier, uint32_t
 
 bool solves_joints_directly(const Model& model, const SimulateSettings& s) {
     if (s.joints != JointSolve::Auto) return s.joints == JointSolve::Direct;
-    return model.pieces.size() <= kAutoDirectPieces && (largest_joined_mass_ratio(model) > kIterativeMassRatio ||
-                                                        largest_island_mass_ratio(model) > kIterativeIslandRatio);
+    return model.pieces.size() <= kAutoDirectPieces;
 }
 
 uint32_t frame_count(const SimulateSettings& s) {
@@ -579,17 +582,23 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
         spdlog::info("auto: {} ({})", what, why);
         chosen.push_back({{"what", what}, {"why", why}});
     };
-    if (in.simulate.joints == JointSolve::Auto && !model.constraints.empty()) {
+    const bool auto_joints = in.simulate.joints == JointSolve::Auto && !model.constraints.empty();
+    if (auto_joints && direct) {
+        choose("[simulate] joints = \"direct\"",
+               fmt::format("{} pieces: direct up to {}", model.pieces.size(), kAutoDirectPieces));
+    } else if (auto_joints) {
+        // Iterative joints kept for a large model: said with the ratios where they start to fail.
         uint32_t heavy = 0, light = 0, island_heavy = 0, island_light = 0;
         const double ratio = largest_joined_mass_ratio(model, &heavy, &light);
         const double island = largest_island_mass_ratio(model, &island_heavy, &island_light);
-        if (direct || (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio)) {
-            choose(fmt::format("[simulate] joints = \"{}\"", direct ? "direct" : "iterative"),
-                   fmt::format("the largest mass ratio between joined pieces is {:.3g}, piece {} over piece {}, direct "
-                               "above {:g}; within an island of joined pieces {:.3g}, piece {} over piece {}, direct "
-                               "above {:g}",
-                               ratio, heavy, light, kIterativeMassRatio, island, island_heavy, island_light,
-                               kIterativeIslandRatio));
+        if (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio) {
+            choose("[simulate] joints = \"iterative\"",
+                   fmt::format("{} pieces: iterative above {}, where direct joints cost 2 to 5 times as much; the "
+                               "largest mass ratio between joined pieces is {:.3g}, piece {} over piece {} "
+                               "(iterative joints hold up to {:g}); within an island of joined pieces {:.3g}, piece "
+                               "{} over piece {} (up to {:g})",
+                               model.pieces.size(), kAutoDirectPieces, ratio, heavy, light, kIterativeMassRatio,
+                               island, island_heavy, island_light, kIterativeIslandRatio));
         } else {
             const bool joined = ratio > kIterativeMassRatio;
             warn_and_keep(warned,
@@ -684,16 +693,35 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     auto speed = [&](uint32_t g, uint32_t i) {
         return (t.pose(g, i).position - t.pose(g - 1, i).position).cast<double>().norm() * in.simulate.fps;
     };
+    // Once landed, the rest speed grows with the pieces' spread as it grows with the object's size:
+    // a camera that frames pieces strewn over 2 m (the follow camera frames the 90% of the mass
+    // nearest its middle) sees a fragment creep at 5 cm/s under half a pixel a frame.
+    std::vector<std::pair<double, double>> by_distance;  // (distance from the centre, mass)
+    auto spread = [&](uint32_t g, const Vec3& c) {
+        by_distance.clear();
+        double total = 0;
+        for (uint32_t i = 0; i < world.pieces(); ++i)
+            if (mass[i] > 0) by_distance.emplace_back((t.pose(g, i).position.cast<double>() - c).norm(), mass[i]), total += mass[i];
+        std::sort(by_distance.begin(), by_distance.end());
+        double held = 0;
+        for (const auto& [d, m] : by_distance)
+            if ((held += m) >= kRestSpreadMass * total) return 2 * d;
+        return 0.0;
+    };
     auto stayed = [&](uint32_t from, uint32_t to) {
         std::vector<Vec3> centres;
-        for (uint32_t g = from; g <= to; ++g) centres.push_back(centre(g));
+        std::vector<double> rests;
+        for (uint32_t g = from; g <= to; ++g) {
+            centres.push_back(centre(g));
+            rests.push_back(landed ? std::max(rest, kRestSpeedPerSize * spread(g, centres.back())) : rest);
+        }
         for (uint32_t i = 0; i < world.pieces(); ++i) {
             if (!world.piece_dynamic(i)) continue;
             if (to > from + 1 && speed(to, i) > speed(from + 1, i) + kRestSpeed) return false;
             const BodyPose& a = t.pose(from, i);
             for (uint32_t g = from + 1; g <= to; ++g) {
                 const BodyPose& b = t.pose(g, i);
-                const double own = std::max(rest, kRestSpeedPerSize * (b.position.cast<double>() - centres[g - from]).norm());
+                const double own = std::max(rests[g - from], kRestSpeedPerSize * (b.position.cast<double>() - centres[g - from]).norm());
                 if (!(speed(g, i) < own)) return false;
                 const double angle = 2 * std::acos(std::min(1.0, std::abs(double(a.rotation.dot(b.rotation)))));
                 if (!((b.position - a.position).cast<double>().norm() + angle * radius[i] < own * kRestHold)) return false;
@@ -840,6 +868,23 @@ SimulationResult simulate(const Model& model, const SimulationInput& shot_input,
     out.asleep = world.sleeping_pieces();
     out.parallel_contact_tests = world.parallel_contact_tests();
     if (in.simulate.auto_duration && out.complete && out.rest_time < 0) warn_still_moving(world, radius, in.simulate, out.warnings);
+    if (out.deepest.depth_per_radius > kDeepContactWarning) {
+        // A step 2^k times shorter, k enough to bring the depth under half the radius were it in
+        // proportion to the step (it falls less: docs/log.md, 2026-11-30).
+        double factor = 1;
+        while (factor < 4096 && out.deepest.depth_per_radius / factor > 0.5) factor *= 2;
+        const double h_then = out.deepest_step / factor;
+        const auto substeps = uint32_t(std::ceil(1.0 / (in.simulate.fps * h_then) - 1e-9));
+        warn_and_keep(out.warnings,
+             fmt::format("simulate: piece {} was {:.3g} mm inside what it touches at {:.4f} s, {:.2g} times its "
+                         "radius ({:.3g} mm), after a step of h = {:.3g} s: at this step small pieces move further "
+                         "than their size at the impact's speed, and one can end inside the ground or another piece, "
+                         "where the contacts no longer push it out. A finer step, [simulate] substeps = {} (h = "
+                         "{:.3g} s), lets them in less deep",
+                         out.deepest.piece, 1e3 * out.deepest.depth, out.deepest_time, out.deepest.depth_per_radius,
+                         1e3 * out.deepest.depth / out.deepest.depth_per_radius, out.deepest_step, substeps,
+                         1.0 / (in.simulate.fps * substeps)));
+    }
     if (world.flying())
         spdlog::info("simulate: the object moved as one rigid body for the whole run: nothing came within contact "
                      "reach ([simulate] rigid_flight)");

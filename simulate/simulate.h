@@ -17,6 +17,7 @@
 #include "core/model.h"
 #include "core/scene_settings.h"
 #include "core/trajectory.h"
+#include "simulate/deep_contact.h"
 #include "simulate/energized_fracture.h"
 
 namespace shatter {
@@ -123,6 +124,10 @@ struct SimulationResult {
     std::vector<EnergySample> energy;
     uint64_t steps = 0;           // solver steps kept
     uint64_t rejected_steps = 0;  // substeps = "auto": probe steps undone to be re-run finer
+    // The solver's iterations, summed over the kept steps (each step's most over its batches):
+    // over `steps`, the iterations a step took (20 as shipped with iterative joints; with direct
+    // ones until the joints converge, docs/physics.md section 5b).
+    uint64_t solver_iterations = 0;
     uint32_t asleep = 0;          // dynamic pieces asleep at the end ([simulate] sleep)
     // duration = "auto": when the last piece came to rest (the movie ends kRestHold later);
     // negative when the simulation reached max_duration first, or without "auto" (unit: s).
@@ -131,6 +136,10 @@ struct SimulationResult {
     uint64_t parallel_contact_tests = 0;  // BulletWorld::parallel_contact_tests at the end
     ResidualPeak residual;        // over every step (before each step's breaks)
     ResidualPeak residual_before_break;  // over the steps before the first break's
+    // The deepest contact for its piece's size over the kept steps (BulletWorld::
+    // last_step_deepest_contact), when, and the step it came from (unit: s).
+    DeepContact deepest;
+    double deepest_time = 0, deepest_step = 0;
     bool complete = true;
     std::string stop_reason;  // why it stopped early (complete == false)
     InstabilityWhere stopped_at;
@@ -166,21 +175,21 @@ double largest_joined_mass_ratio(const Model& model, uint32_t* heavier = nullptr
 // The largest mass ratio between two pieces of one island (pieces joined through constraints,
 // directly or through others), and which two.
 double largest_island_mass_ratio(const Model& model, uint32_t* heavier = nullptr, uint32_t* lighter = nullptr);
-// joints = "auto" solves the joints directly when the largest joined mass ratio is above this: the
-// rig of the stability map (20 iterations) is stable with iterative joints up to a ratio of 10
-// and cascades from 12 on; direct joints hold it up to 1,000 (docs/accuracy.md, "The stability
-// map").
+// joints = "auto" solves the joints directly in a model of at most this many pieces: direct joints
+// cost about as much as iterative ones at 10 pieces, 2 to 3 times at 50 and 100, 3 to 7.5 times at
+// 1,000 (docs/physics.md section 5b), and only they keep every joint's force to its stretch through an
+// impact. A larger model keeps iterative joints, and is warned where they may fail:
+inline constexpr size_t kAutoDirectPieces = 100;
+// ... when the largest joined mass ratio is above this: the rig of the stability map (20
+// iterations) is stable with iterative joints up to a ratio of 10 and cascades from 12 on; direct
+// joints hold it up to 1,000 (docs/accuracy.md, "The stability map").
 inline constexpr double kIterativeMassRatio = 10;   // (unit: 1)
 // ... or when the largest island mass ratio is above this: a load passed down a chain of moderate
 // ratios onto a light piece that a contact holds (the stability scenes' stack, heavier by the same
 // factor at each of its three joints) cascades with iterative joints at 100 from top to bottom and
 // stands at 10, where direct joints, which solve such contacts through the joints, hold it at
-// 1,000 (docs/physics.md section 5b has what it adds in the corpus run).
+// 1,000.
 inline constexpr double kIterativeIslandRatio = 30;  // (unit: 1)
-// ... for models of at most this many pieces: direct joints cost about as much as iterative ones
-// at 10 pieces, 2 times at 50 and 100, 4.6 times at 1,000 (docs/physics.md section 5b); a larger
-// model keeps iterative joints and is warned.
-inline constexpr size_t kAutoDirectPieces = 100;
 // Whether a run of `model` with these settings solves its joints directly ("auto" resolved).
 bool solves_joints_directly(const Model& model, const SimulateSettings& s);
 
@@ -226,6 +235,11 @@ inline constexpr double kAutoBlock = 1.0 / 480;   // (unit: s)
 // warned about: an impact's peak force is then resolved to about 1 / (omega h) of itself
 // (docs/physics.md section 7), so a stiff material may not break where it should.
 inline constexpr double kStiffStepWarning = 10;   // (unit: 1)
+// A piece found deeper inside what it touches than this many times its radius after a kept step
+// (SimulationResult::deepest) is warned about, with the finer step to take: glmark2's cat in 1,000
+// pieces dropped 1.5 m at h = 1/480 s reaches 1.47 and ends with a 3 mm piece stuck below the
+// ground; in 300 pieces 0.79, and none does.
+inline constexpr double kDeepContactWarning = 1.0;  // (unit: 1)
 inline constexpr double kAutoRefineLoad = 0.5;    // of a joint's strength
 inline constexpr double kAutoCalmLoad = 0.25;     // of a joint's strength
 inline constexpr double kAutoOmegaH = 2.5;        // (unit: 1)
@@ -255,10 +269,18 @@ uint32_t auto_split(double block, double highest, double lowest, bool direct_joi
 // the scene or breaks, never more than a quarter of the speed gravity gives in the hold (kRestFall
 // x |g| x kRestHold, 1.23 m/s on Earth): a 100 m object dropped from rest falls slower than 0.04
 // sizes per second for its whole first hold, and would end its movie before it lands.
+// Once it has landed, the rest speed of each frame is also at least kRestSpeedPerSize times the
+// spread of its pieces (twice the distance from their centre of mass within which the nearest
+// kRestSpreadMass of the mass lies): the follow camera frames the bulk of the pieces, not the
+// object's first size, and a fragment creeping at 3 cm/s in a heap of pieces strewn over 0.8 m
+// moves under half a pixel a frame (glmark2's cat in 1,000 pieces: one 3 mm piece wedged under the
+// heap creeps at 2 cm/s for seconds; by the object's size alone its movie runs to max_duration, by
+// the spread it ends at 6.4 s).
 inline constexpr double kRestSpeed = 0.02;          // (unit: m/s)
 inline constexpr double kRestSpeedPerSize = 0.04;   // (unit: 1/s: object sizes per second)
 inline constexpr double kRestHold = 0.5;            // (unit: s)
 inline constexpr double kRestFall = 0.25;           // (unit: 1)
+inline constexpr double kRestSpreadMass = 0.9;      // the share of the mass whose spread counts (unit: 1)
 double rest_speed(const Model& model, double gravity);  // gravity: |g| (unit: m/s^2); returns m/s
 // Sleeping ([simulate] sleep; simulate/bullet_world.h): an island of pieces sleeps once all of
 // them have moved slower than kSleepSpeed (centre, and turning: at their radius) for kSleepTime:

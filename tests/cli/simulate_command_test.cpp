@@ -127,7 +127,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"NegativeStiffness", "[material]\nstiffness = -5\n", {}, 0, 3, "material.stiffness = -5"},
         BadCase{"NegativeAlphaFlag", "", {"--alpha=-1"}, 0, 2, "--alpha"},
         BadCase{"UnknownShotKey", "[simulate]\nsubstep = 4\n", {}, 0, 3, "did you mean 'substeps'"},
-        BadCase{"CfmOutsideTheConvergentRange", "[material]\nstiffness = 1\n", {}, 0, 3, "CFM"},
+        BadCase{"CfmOutsideTheConvergentRange", "[material]\nstiffness = 1\n[simulate]\njoints = \"iterative\"\n", {}, 0, 3,
+                "CFM"},
         BadCase{"DrivenPieceThatDoesNotExist", "[object]\n[[object.driven]]\npiece = 9\nfixed = true\n", {}, 0, 3,
                 "piece 9 does not exist"}),
     [](const auto& info) { return info.param.name; });

@@ -143,6 +143,40 @@ TEST(AutoDuration, APieceFarFromTheOthersRestsAtASpeedInProportionToItsDistance)
     EXPECT_EQ(t.frames(), uint32_t(std::ceil(kRestHold * in.simulate.fps - 1e-9)) + 1);
 }
 
+// Once landed, the rest speed grows with the pieces' spread: eight 10 cm boxes (1 kg) in a ring of
+// radius r = 1 m on a frictionless ground, the object turning at w = 2 rad/s about its centre, each
+// box sliding off along its tangent at v = w r = 2 m/s and spinning at w. At time t a box is
+// sqrt(r^2 + (v t)^2) from the centre, the eight spread over twice that, and the rest speed is
+// 0.04 x the spread; over a hold ending at t a box's farthest point gets (v + w r_p) x 0.5 s from
+// where it was (r_p = 0.0866 m, half the cube's diagonal). So the hold rests once
+// 0.08 sqrt(r^2 + (v t)^2) > v + w r_p, t = 13.57 s: its first frame at 13.1 s (30 fps). With the
+// far pieces' rule alone (0.04 x each box's distance) it would take twice as long.
+TEST(AutoDuration, PiecesStrewnWideRestAtASpeedInProportionToTheirSpread) {
+    BoxModelBuilder b(1000);
+    const double r = 1.0, w = 2.0, half_diagonal = 0.05 * std::sqrt(3.0);
+    for (int k = 0; k < 8; ++k) {
+        const double a = k * M_PI / 4;
+        b.box(Vec3(r * std::cos(a), 0.05, r * std::sin(a)), Vec3::Constant(0.1));
+    }
+    const Model m = b.take();
+    SimulationInput in = dropped_plate();
+    in.object.pose = Pose{};
+    in.object.angular_velocity = Vec3(0, w, 0);
+    in.material.surface = SurfaceSettings{0, 0};
+    in.scene.ground_surface = SurfaceSettings{0, 0};
+    in.simulate.max_duration = 30;
+    const SimulationResult result = simulate(m, in, "test");
+    ASSERT_TRUE(result.complete) << result.stop_reason;
+    const Trajectory& t = result.trajectory;
+    const double v = w * r;
+    const double speed = double((t.pose(t.frames() - 1, 0).position - t.pose(t.frames() - 2, 0).position).norm()) * t.fps;
+    EXPECT_NEAR(speed, v, 0.01);  // still sliding at the end: at rest by the spread, not stopped
+    const double end = std::sqrt(std::pow((v + w * half_diagonal) / (2 * kRestSpeedPerSize), 2) - r * r) / v;
+    EXPECT_NEAR(end, 13.573, 1e-3);
+    const double first = std::ceil(end * in.simulate.fps) / in.simulate.fps - kRestHold;  // the hold's first frame
+    EXPECT_NEAR(result.rest_time, first, 1.5 / in.simulate.fps);
+}
+
 TEST(AutoDuration, StopsAtTheCapWhenThePiecesDoNotRest) {
     SimulationInput in = dropped_plate();
     in.simulate.max_duration = 0.2;  // still falling at 0.2 s (lands at 0.25 s)

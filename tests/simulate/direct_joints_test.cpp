@@ -3,6 +3,7 @@
 // the step (CFM above max_cfm, refused) is simulated, and hangs where its spring says.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -105,6 +106,67 @@ TEST(DirectJoints, ACantileverAtRestCarriesItsWeightAndItsBooksAgree) {
     EXPECT_NEAR(d.stored, d.elastic, 1e-3 * d.elastic);
     EXPECT_GT(d.elastic, 0);
     cantilever(false);  // printed beside it: the iterated solve at the same 20 iterations
+}
+
+// The solver's iterations a step (SimulationResult::solver_iterations, simulate_bench's
+// iterations_per_step): a 3 x 3 slab of 5 cm boxes, stiff and never breaking, dropped 10 cm onto
+// the ground on a corner and left to settle, every step solved (no rigid flight, no sleep).
+// Iterative joints take the step's own 20 in every step; direct ones iterate on past them, up to
+// ten times as many, while the contacts on the joined boxes and the joints have not converged
+// (the landing).
+TEST(DirectJoints, IterationsAStepAreTheStepsOwnIteratedAndUntilTheJointsConvergeDirect) {
+    const Model m = box_grid(3, 1, 3, 0.05, Vec3(-0.075, 0, -0.075), 2400, 2);
+    SimulationInput in;
+    in.object.pose.position = Vec3(0, 0.1, 0);
+    in.object.pose.rotation_deg = Vec3(20, 0, 10);  // it lands on a corner
+    in.material.stiffness = 1e12;
+    in.material.strength = 1e9;
+    in.simulate.duration = 0.5;
+    in.simulate.fps = 30;
+    in.simulate.substeps = 8;
+    in.simulate.rigid_flight = false;
+    in.simulate.sleep = false;
+    in.simulate.joints = JointSolve::Iterative;
+    const SimulationResult iterated = simulate(m, in, "test");
+    ASSERT_TRUE(iterated.complete) << iterated.stop_reason;
+    EXPECT_EQ(iterated.steps, 120u);
+    EXPECT_EQ(iterated.solver_iterations, 20 * iterated.steps);
+    in.simulate.joints = JointSolve::Direct;
+    const SimulationResult direct = simulate(m, in, "test");
+    ASSERT_TRUE(direct.complete) << direct.stop_reason;
+    EXPECT_EQ(direct.steps, 120u);
+    EXPECT_GT(direct.solver_iterations, 20 * direct.steps);
+    EXPECT_LE(direct.solver_iterations, 200 * direct.steps);
+    std::printf("iterations a step: iterative %.1f, direct %.1f\n", double(iterated.solver_iterations) / iterated.steps,
+                double(direct.solver_iterations) / direct.steps);
+}
+
+// joints = "auto": direct joints in a model of at most kAutoDirectPieces pieces, iterative in a
+// larger one, which is warned when a piece is more than kIterativeMassRatio times as heavy as one
+// joined to it, naming both. A row of 100 and one of 101 boxes of 1 cm, box 7 made 20 times as
+// heavy, dropped for one frame; the row of 100 equal boxes is direct too.
+TEST(DirectJoints, AutoIsDirectUpToAHundredPiecesAndWarnsALargerModelOfItsMassRatio) {
+    const Model equal = box_grid(100, 1, 1, 0.01, Vec3::Zero(), 2400, 1);
+    EXPECT_NEAR(largest_joined_mass_ratio(equal), 1, 1e-9);
+    EXPECT_TRUE(solves_joints_directly(equal, SimulateSettings{}));
+    for (uint32_t count : {100u, 101u}) {
+        Model m = box_grid(count, 1, 1, 0.01, Vec3::Zero(), 2400, 1);
+        m.pieces[7].mass.mass *= 20;
+        m.pieces[7].mass.inertia *= 20;
+        SimulationInput in;
+        in.object.pose.position = Vec3(0, 0.5, 0);
+        in.simulate.duration = 1.0 / 30;
+        ASSERT_EQ(in.simulate.joints, JointSolve::Auto);
+        EXPECT_EQ(solves_joints_directly(m, in.simulate), count <= kAutoDirectPieces) << count;
+        const SimulationResult r = simulate(m, in, "test");
+        ASSERT_TRUE(r.complete) << r.stop_reason;
+        const std::string warning = "keeps iterative joints for 101 pieces (direct up to 100), but piece 7 is 20 "
+                                    "times as heavy as piece ";
+        const bool warned = std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) {
+            return w.find(warning) != std::string::npos;
+        });
+        EXPECT_EQ(warned, count > kAutoDirectPieces) << count;
+    }
 }
 
 }  // namespace

@@ -20,20 +20,19 @@ Verdict default_direct(StudyCase c) {
     return run_and_judge(c);
 }
 
-// The shipped joints ("auto") solve the hanging block's joints directly (the block is 1,000 times
-// a link), and the stacks of 100 : 1 and 1,000 : 1 (4.6 and 10 times per joint, but 100 and 1,000
-// from the bottom cube to the top one), and the stack of 10 : 1 iteratively; the model says which,
-// and a run with the shipped settings hangs as the direct one does.
-TEST(StabilityScenes, TheShippedJointsAreDirectWhereJoinedMassesDifferTenfold) {
+// The shipped joints ("auto") are direct in every model of at most 100 pieces: the hanging block
+// (1,000 times a link) and the stacks of 10, 100 and 1,000 : 1 (the cube at the bottom the
+// lightest, the top one the heaviest); the model says the ratios the warning of a larger model
+// names, and a run with the shipped settings hangs as the direct one does. The 30 x 30 grid (900
+// pieces) keeps iterative joints.
+TEST(StabilityScenes, TheShippedJointsAreDirectUpToAHundredPieces) {
     StudyCase hanging = hanging_case(1000);
     EXPECT_NEAR(largest_joined_mass_ratio(hanging.model), 1000, 1e-9);
     EXPECT_EQ(hanging.input.simulate.joints, JointSolve::Auto);
     EXPECT_TRUE(solves_joints_directly(hanging.model, hanging.input.simulate));
     const StudyCase stack = stack_case(10);
     EXPECT_NEAR(largest_joined_mass_ratio(stack.model), std::cbrt(10.0), 1e-6);
-    EXPECT_NEAR(largest_island_mass_ratio(stack.model), 10, 1e-9);
-    EXPECT_FALSE(solves_joints_directly(stack.model, stack.input.simulate));
-    for (double ratio : {100.0, 1000.0}) {
+    for (double ratio : {10.0, 100.0, 1000.0}) {
         const StudyCase heavy = stack_case(ratio);
         uint32_t heavier = 0, lighter = 0;
         EXPECT_NEAR(largest_island_mass_ratio(heavy.model, &heavier, &lighter), ratio, 1e-9 * ratio);
@@ -41,6 +40,9 @@ TEST(StabilityScenes, TheShippedJointsAreDirectWhereJoinedMassesDifferTenfold) {
         EXPECT_EQ(lighter, 0u);
         EXPECT_TRUE(solves_joints_directly(heavy.model, heavy.input.simulate)) << "ratio " << ratio;
     }
+    const StudyCase grid = grid_case();
+    EXPECT_GT(grid.model.pieces.size(), kAutoDirectPieces);
+    EXPECT_FALSE(solves_joints_directly(grid.model, grid.input.simulate));
 
     hanging.input.simulate.method = EnergizeMethod::Exact;
     apply_energize_method(EnergizeMethod::Exact, hanging.input.simulate);
@@ -91,16 +93,17 @@ TEST(StabilityScenes, StacksWithMassRatiosUpToAThousandStandStill) {
 }
 
 // The chain of 10 links whose joints alternate 1e3 and 1e6 N/m (a stiffness ratio of 1,000), the
-// block 1, 10 and 100 times a link, with the shipped settings: no break, no fly-apart, the block
-// hanging within 10% of its springs' sag (measured +4.7% and +5.8% with iterative joints at 1 and
-// 10, -3.1% with direct joints at 100), its kinetic energy at the end under a tenth of its peak.
+// block 1, 10 and 100 times a link, with the shipped settings (direct joints): no break, no
+// fly-apart, the block hanging within 10% of its springs' sag (measured 4e-6, -6e-6 and -3.1%;
+// iterative joints sagged +4.7% and +5.8% at 1 and 10), its kinetic energy at the end under a
+// tenth of its peak.
 // (At 1,000 the run grows energy with either solve: docs/accuracy.md section 6.1.)
 TEST(StabilityScenes, ChainOfAlternatingStiffnessHangs) {
     for (double ratio : {1.0, 10.0, 100.0}) {
         StudyCase c = hanging_case(ratio, 10, true);
         c.input.simulate.method = EnergizeMethod::Exact;
         apply_energize_method(EnergizeMethod::Exact, c.input.simulate);
-        EXPECT_EQ(solves_joints_directly(c.model, c.input.simulate), ratio > 10) << "ratio " << ratio;
+        EXPECT_TRUE(solves_joints_directly(c.model, c.input.simulate)) << "ratio " << ratio;
         const Verdict v = run_and_judge(c);
         EXPECT_EQ(v.cls, Stability::Stable) << "ratio " << ratio;
         EXPECT_EQ(v.breaks, 0u) << "ratio " << ratio;
@@ -138,8 +141,9 @@ TEST(StabilityScenes, WeldedTowerHitByAFastSphereStaysWhole) {
 // A wall of 10 x 10 welded 5 cm concrete cubes (2 MPa joints) on a fixed bottom row, hit by three
 // 0.88 kg steel balls at 10 m/s 0.1 s apart: it cracks where the balls strike and nowhere else
 // (every broken joint within 8 cm of a struck point, the hit cube's and its ring's), and no joint
-// that holds opens 1 mm. With the shipped settings at the scene's step 5 joints break (measured);
-// with the automatic step, which resolves the impacts, 44.
+// that holds opens 1 mm. With the shipped settings (direct joints) at the scene's step no joint
+// breaks (omega h = 12 there: the impacts' peak forces are not resolved, and the run warns so);
+// with the automatic step, which resolves them, 32 (measured).
 TEST(StabilityScenes, AWallHitByThreeBallsCracksOnlyWhereTheyStrike) {
     for (bool automatic : {false, true}) {
         StudyCase c = wall_case();
@@ -149,7 +153,9 @@ TEST(StabilityScenes, AWallHitByThreeBallsCracksOnlyWhereTheyStrike) {
         EXPECT_EQ(c.input.simulate.joints, JointSolve::Auto);
         const Verdict v = run_and_judge(c);
         EXPECT_EQ(v.cls, Stability::Stable) << "automatic step " << automatic;
-        EXPECT_GT(v.breaks, automatic ? 20u : 0u) << "automatic step " << automatic;
+        if (automatic) {
+            EXPECT_GT(v.breaks, 20u);
+        }
         EXPECT_EQ(v.far_breaks, 0u) << "automatic step " << automatic;
         EXPECT_LE(v.measure, kWallDamageRadius) << "automatic step " << automatic;
         EXPECT_LT(v.open, 1e-3) << "automatic step " << automatic;

@@ -30,7 +30,7 @@ SimulationResult shattered_slab(unsigned threads) {
 
 TEST(Threads, AnyNumberOfThreadsGivesTheSameRun) {
     const SimulationResult one = shattered_slab(1);
-    ASSERT_TRUE(one.complete);
+    ASSERT_TRUE(one.complete) << one.stop_reason;
     EXPECT_EQ(one.parallel_contact_tests, 0u);
     // It did shatter: most joints broke, into many fragments that touch.
     ASSERT_GT(one.breaks.size(), 200u);
