@@ -2,18 +2,23 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps build demo test bench asan fuzz study corpus corpus-run clean
+.PHONY: all deps configure build demo test bench asan fuzz study corpus corpus-run clean
 
 all: build
 
 deps:
 	@bash scripts/install-deps.sh
 
-build: deps
+configure: deps
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release > $(BUILD).configure.log 2>&1 || (cat $(BUILD).configure.log; exit 1)
+
+# Everything: the command, the tests, the benchmarks.
+build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo needs the `shatter` command alone (about half of the objects `build` compiles).
+demo: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target shatter
 	@bash scripts/install-node-tools.sh $(BUILD)
 	@bash scripts/demo.sh $(BUILD)
 

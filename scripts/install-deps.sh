@@ -8,6 +8,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build pkg-config
+  # a compiler cache: a second clone on the same machine builds from it (CMakeLists.txt)
+  ccache
   # prescore: mesh I/O, tetrahedralization, repair
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libassimp-dev
   # prescore: simplifying very large surfaces for drawing
