@@ -2,13 +2,13 @@
 // constraints break, and the energy they stored comes back as kinetic energy (energized
 // fracture). The public entry point of the stage.
 //
-//   per frame: per substep (h = 1 / (fps * substeps)):
-//     [save state]  step  ->  find overloaded constraints  ->  break policy picks
-//     -> [rollback: restore, remove them, step again | remove them]  ->  energize each
-//   record the frame's poses and energy books
-// With substeps = "auto" the substeps of a frame are blocks of at most 1/480 s, each run as one
+// A run is a fixed list of stages (simulate.cpp, simulate()): choose the joint solve and the
+// stiffness; record frame 0; then per frame its steps, each followed by the stepper's stages
+// (stepper.h: save, step, measure, pick breaks, roll back or remove, energize) and the guard
+// (instability.h); record the frame's poses and books; check for rest (rest_check.h).
+// With substeps = "auto" the steps of a frame are blocks of at most 1/480 s, each run as one
 // probe step or, when the probe's joints carry kAutoRefineLoad of their strength or more, as the
-// fine steps the stiffest joint needs (below, "The automatic step").
+// fine steps the stiffest joint needs (auto_step.h; below, "The automatic step").
 #pragma once
 
 #include <string>
