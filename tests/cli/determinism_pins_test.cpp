@@ -10,17 +10,19 @@
 // (Debian's libosmesa6) moves pixels by a level here and there, and so does the processor it
 // compiles its shaders for (llvmpipe's JIT uses what the processor has: on a machine with
 // AVX-512, code that draws the same and the same package gave other frame bytes for every
-// scene, and the same model and trajectory bytes). The pins record the renderer's package
-// version and the processor's widest vector instructions; where either differs the frames are
-// not compared (the test says so), the model and trajectory bytes still are.
+// scene, and the same model and trajectory bytes; so did two AVX-512 machines). The pins record the
+// renderer's package version and the processor's vector instruction sets; where either differs
+// the frames are not compared (the test says so), the model and trajectory bytes still are.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -57,21 +59,34 @@ std::string renderer_version() {
     return r.exit_code == 0 && !r.out.empty() ? r.out : "unknown";
 }
 
-// The widest vector instructions the processor has, by /proc/cpuinfo's flags: "avx512f",
-// "avx2", "avx" or "sse".
+// The processor's instruction sets that llvmpipe's code generator may use, by /proc/cpuinfo's
+// flags: the widest vector instructions ("avx512f", "avx2", "avx" or "sse") and a hash of every
+// SIMD-related flag (sse*, ssse3, avx*, fma, f16c, bmi*, amx*, vaes, vpclmulqdq, gfni, popcnt): two
+// AVX-512 machines with the same Mesa package gave other frame bytes, so the widest set alone
+// does not say which code draws.
 std::string vector_instructions() {
     std::istringstream in(slurp("/proc/cpuinfo"));
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("flags", 0) != 0) continue;
-        line += ' ';
-        for (const char* isa : {"avx512f", "avx2", "avx"})
-            if (line.find(std::string(" ") + isa + " ") != std::string::npos) return isa;
-        break;
+        std::istringstream words(line.substr(line.find(':') + 1));
+        std::vector<std::string> simd;
+        for (std::string w; words >> w;)
+            for (const char* prefix : {"sse", "ssse", "avx", "fma", "f16c", "bmi", "amx", "vaes", "vpclmul", "gfni", "popcnt"})
+                if (w.rfind(prefix, 0) == 0) {
+                    simd.push_back(w);
+                    break;
+                }
+        std::sort(simd.begin(), simd.end());
+        std::string all;
+        for (const std::string& w : simd) all += w + ' ';
+        const auto has = [&](const char* isa) { return std::find(simd.begin(), simd.end(), isa) != simd.end(); };
+        const char* widest = has("avx512f") ? "avx512f" : has("avx2") ? "avx2" : has("avx") ? "avx" : "sse";
+        return fmt::format("{} (simd flags {:08x})", widest, uint32_t(fnv1a64(all)));
     }
     return "sse";
 }
 
-// What draws the frames: "libosmesa6 VERSION on ISA".
+// What draws the frames: "libosmesa6 VERSION on ISA (simd flags HASH)".
 std::string renderer() { return "libosmesa6 " + renderer_version() + " on " + vector_instructions(); }
 
 std::string hash_of(const std::string& path) { return fmt::format("{:016x}", fnv1a64(slurp(path))); }
