@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps configure build demo test bench asan fuzz study corpus corpus-run clean
+.PHONY: all deps configure build demo test refresh bench asan fuzz study corpus corpus-run clean
 
 all: build
 
@@ -25,6 +25,11 @@ demo: configure
 test: build
 	@bash scripts/install-node-tools.sh $(BUILD)
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# After a change of behaviour: re-makes the pins, the pinned figures, the goldens, the scenes'
+# sweeps and the generated pages, and says what moved and by how much (scripts/refresh.py).
+refresh: build
+	@/usr/bin/python3 scripts/refresh.py $(BUILD)
 
 bench: build
 	@bash scripts/bench.sh $(BUILD)
