@@ -56,13 +56,15 @@ study: build
 	@/usr/bin/python3 scripts/study_tables.py bench/results/study docs/results/study.md
 
 # Every mesh of the corpus (CGAL's data set, glmark2-data, assimp-testmodels) pre-scored with the
-# defaults; the table goes to docs/corpus.md. A fixed sample of it runs in `make test`.
+# defaults; the page goes to docs/results/corpus.md, made from its record docs/results/corpus.tsv.
+# A fixed sample of it runs in `make test`.
 corpus: build
-	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/corpus.md
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/results/corpus.md
 
-# `shatter run MESH` (the default shot, movie and all) on every mesh of the corpus: docs/corpus-run.md.
+# `shatter run MESH` (the default shot, movie and all) on every mesh of the corpus:
+# docs/results/corpus-run.md, made from its record docs/results/corpus-run.tsv.
 corpus-run: build
-	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --run --workers 1 --table docs/corpus-run.md
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --run --workers 1 --table docs/results/corpus-run.md
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log out build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log
