@@ -44,26 +44,32 @@ fuzz: deps
 	@bash scripts/fuzz.sh $(FUZZ_SECONDS) build-fuzz $(JOBS)
 
 # The accuracy and cost study (docs/accuracy.md): CSV into bench/results/study, charts into docs/images.
-# Then the rigid method against the continuum reference on every scene (section 8; fem_SCENE.csv and
-# the printed tables in fem_SCENE.md).
+# Then the continuum reference's checks against theory (fem_checks.md) and the rigid method against
+# it on every scene (section 8; fem_SCENE.csv and the printed tables in fem_SCENE.md). Last, the
+# results page docs/results/study.md from those files (scripts/study_tables.py; ctest
+# Docs.StudyResults keeps it equal to them).
 FEM_SCENES ?= beam chain plate bunny corpus
 study: build
-	@cmake --build $(BUILD) --target study study_float fem_compare -j $(JOBS)
+	@cmake --build $(BUILD) --target study study_float fem_compare fem_checks -j $(JOBS)
 	@$(BUILD)/bench/study --out bench/results/study --refs $(BUILD)/study-refs
 	@$(BUILD)/bench/study_float --out bench/results/study --refs $(BUILD)/study-refs
+	@$(BUILD)/bench/fem_checks > bench/results/study/fem_checks.md
 	@for s in $(FEM_SCENES); do \
 	  $(BUILD)/bench/fem_compare --scene $$s --out bench/results/study > bench/results/study/fem_$$s.md || exit 1; \
 	done
 	@/usr/bin/python3 scripts/study_charts.py bench/results/study docs/images
+	@/usr/bin/python3 scripts/study_tables.py bench/results/study docs/results/study.md
 
 # Every mesh of the corpus (CGAL's data set, glmark2-data, assimp-testmodels) pre-scored with the
-# defaults; the table goes to docs/corpus.md. A fixed sample of it runs in `make test`.
+# defaults; the page goes to docs/results/corpus.md, made from its record docs/results/corpus.tsv.
+# A fixed sample of it runs in `make test`.
 corpus: build
-	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/corpus.md
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --table docs/results/corpus.md
 
-# `shatter run MESH` (the default shot, movie and all) on every mesh of the corpus: docs/corpus-run.md.
+# `shatter run MESH` (the default shot, movie and all) on every mesh of the corpus:
+# docs/results/corpus-run.md, made from its record docs/results/corpus-run.tsv.
 corpus-run: build
-	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --run --workers 1 --table docs/corpus-run.md
+	@/usr/bin/python3 scripts/corpus.py $(BUILD)/bin/shatter $(BUILD)/corpus --all --run --workers 1 --table docs/results/corpus-run.md
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log out build-asan build-asan.configure.log build-fuzz build-fuzz.configure.log

@@ -1,5 +1,6 @@
 // fem_checks: prints the continuum reference's checks against theory (bench/fem_checks.h) at
-// several mesh resolutions, as the tables of docs/accuracy.md ("A continuum reference").
+// several mesh resolutions (docs/accuracy.md, "A continuum reference"); `make study` keeps the
+// tables in bench/results/study/fem_checks.md, and docs/results/study.md shows them.
 //
 //   fem_checks [--min-cells N] [--max-cells N] [--static-only]
 //   (default: the cantilever at 1, 2, 4, 6, 8 cells across; 12 takes minutes and 0.6 GB)

@@ -1,6 +1,7 @@
 // The paper's scenes (assets/beam, plate, chain, bunny_sphere) over their alpha sweeps: prints
 // one CSV row per scene and alpha with the breaks, the energy books and the fragments' energy
-// after the first break (docs/scenes.md holds the results).
+// after the first break (docs/results/scenes.md holds the sweeps' results; docs/scenes.md says how
+// to read them).
 //
 //   scenes_bench [SCENE ...] [--set SECTION.KEY=VALUE ...] [--alpha A,B,...]
 #include <chrono>

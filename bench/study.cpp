@@ -1,5 +1,6 @@
-// study: accuracy against cost for shatter's simulation (docs/accuracy.md shows and
-// explains the results). Writes CSV into --out; scripts/study_charts.py draws the charts.
+// study: accuracy against cost for shatter's simulation (docs/accuracy.md explains it). Writes
+// CSV into --out; scripts/study_charts.py draws the charts and scripts/study_tables.py makes
+// docs/results/study.md, the results page, from them.
 //
 //   study [--quick] [--out DIR] [--refs DIR] [--section NAME ...] [--scene NAME ...] [--no-render]
 //

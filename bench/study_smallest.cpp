@@ -121,7 +121,7 @@ struct Stats {
     double broken_fraction = 0;    // breaks / constraints
     double scatter = 0;            // (unit: m) mass-weighted RMS distance of the pieces from their centre, last frame
     // (unit: J) the pieces' kinetic energy at the recorded frame nearest to 0.1 s after the first
-    // break: how hard the fragments leave (the column of docs/scenes.md's tables); NaN without a break
+    // break: how hard the fragments leave (the column of docs/results/scenes.md's tables); NaN without a break
     double kinetic_after = NAN;
     // (unit: J) at the same frame, the part of it that is the fragments flying apart: translational
     // kinetic energy about the pieces' common centre of mass (core/fragments.h, the tables' column)

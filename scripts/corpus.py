@@ -4,10 +4,12 @@
 The corpus is what Debian ships: CGAL's data set (libcgal-demo: data.tar.gz, meshes/*.off),
 glmark2-data's models and assimp-testmodels (every file whose extension assimp reads).
 
-  scripts/corpus.py SHATTER WORKDIR --all [--table docs/corpus.md]   the whole corpus (make corpus)
-  scripts/corpus.py SHATTER WORKDIR --sample tests/corpus/sample.tsv  a fixed sample (make test)
-  scripts/corpus.py SHATTER WORKDIR --all --run [--table docs/corpus-run.md]
+  scripts/corpus.py SHATTER WORKDIR --all --table docs/results/corpus.md   the whole corpus (make corpus)
+  scripts/corpus.py SHATTER WORKDIR --sample tests/corpus/sample.tsv       a fixed sample (make test)
+  scripts/corpus.py SHATTER WORKDIR --all --run --table docs/results/corpus-run.md
                                      `shatter run MESH` on every mesh (make corpus-run)
+  scripts/corpus.py --render-only PAGE...   write each page again from its record (PAGE's .tsv)
+  scripts/corpus.py --check PAGE...         exit 1 when a page differs from what its record gives
 
 Each mesh runs as `shatter prescore MESH -o WORKDIR/NAME.model` with a time limit. A mesh passes
 when it pre-scores (exit 0) or is refused with exit code 3 for a reason that makes it no solid
@@ -19,6 +21,10 @@ With --run each mesh runs as `shatter run MESH -o WORKDIR/runs/NAME` (the defaul
 simulate, render, encode, export, report) instead; it passes when it makes a movie, or is refused as
 above. The table adds what the run measured: breaks, fragments, the energy books (stored, injected,
 their ratio to alpha x stored) and the camera (pieces in view, stillness at the end).
+
+--table writes the run's record beside the page (docs/results/corpus.tsv, corpus-run.tsv) and makes the
+page from the record alone (scripts/corpus_pages.py), so that a page can be made again, and checked,
+without running the corpus.
 """
 import argparse
 import concurrent.futures
@@ -34,9 +40,10 @@ import tarfile
 import threading
 import time
 
-LIMIT_SECONDS = 20  # the target for one prescore on this project's 2-core machines (measured, not enforced)
-KILL_SECONDS = 180  # a prescore still running then has no end of its own: it fails
-RUN_KILL_SECONDS = 900  # the same for a whole `shatter run`
+sys.dont_write_bytecode = True  # no __pycache__ in the source folder from a test
+import corpus_pages  # noqa: E402
+from corpus_pages import KILL_SECONDS, RUN_KILL_SECONDS, short, verdict
+
 CGAL_DATA = "/usr/share/doc/libcgal-dev/data.tar.gz"
 GLMARK2 = "/usr/share/glmark2/models"
 ASSIMP = "/usr/share/assimp/models"
@@ -44,10 +51,6 @@ ASSIMP_EXTENSIONS = set(
     "3d 3ds 3mf ac ac3d acc amf ase ask b3d blend bsp bvh cob csm dae dxf enff fbx glb gltf hmp ifc ifczip iqm irr "
     "irrmesh lwo lws lxo md2 md3 md5mesh mdc mdl mesh ms3d ndo nff obj off ogex pk3 ply pmx q3o q3s raw scn sib smd "
     "stl stp ter uc x x3d x3db xgl zae zgl".split())
-# Refusals that say the file holds no solid mesh (or none a reader can read): not counted
-# against the pass rate, but each must come with exit code 3 and its message.
-NOT_SOLID = re.compile(r"no triangles|no area|is empty|cannot read mesh|corrupt mesh|crashed on this file|"
-                       r"did not finish within|PLY header|non-finite coordinate|outside 1e-09")
 
 
 def cgal_meshes(workdir):
@@ -137,85 +140,10 @@ def run_mesh(shatter, workdir, mesh):
     return r
 
 
-def verdict(r):
-    """'ok', 'refused' (no solid mesh, with its reason) or 'FAIL: why'."""
-    if r["code"] == "timeout":
-        return "FAIL: still running after %d s" % (RUN_KILL_SECONDS if "movie" in r else KILL_SECONDS)
-    if r["code"] == 0:
-        return "ok" if r.get("movie", True) else "FAIL: no movie"
-    if r["code"] == 3 and NOT_SOLID.search(r["error"]):
-        return "refused"
-    if r["code"] == 3:
-        return "FAIL: refused a solid mesh"
-    return "FAIL: exit %s" % r["code"]
-
-
-def short(text, n=90):
-    text = re.sub(r"\s*\(fix:.*$", "", text)
-    return text if len(text) <= n else text[:n - 3] + "..."
-
-
-def write_table(results, path, workdir):
-    ok = sum(verdict(r) == "ok" for r in results)
-    refused = sum(verdict(r) == "refused" for r in results)
-    failed = [r for r in results if verdict(r).startswith("FAIL")]
-    solid = ok + len(failed)
-    lines = [
-        "# The mesh corpus",
-        "",
-        "Every mesh Debian ships in CGAL's data set (libcgal-demo), glmark2-data and assimp-testmodels (each file "
-        "whose extension assimp reads), pre-scored with the defaults: `make corpus` "
-        "(scripts/corpus.py; a fixed sample runs in `make test`). A file passes when it pre-scores, or is refused "
-        "with exit code 3 for a reason that makes it no solid mesh (empty, no area, no triangles, unreadable); a "
-        "crash, a refused solid mesh or a run that does not end by itself (killed after %d s) fails. The target "
-        "for one prescore is %d s." % (KILL_SECONDS, LIMIT_SECONDS),
-        "",
-        "| | files |",
-        "| --- | --- |",
-        "| pre-scored | %d |" % ok,
-        "| refused: no solid mesh | %d |" % refused,
-        "| failed | %d |" % len(failed),
-        "| solid meshes pre-scored | %d of %d (%.1f%%) |" % (ok, solid, 100.0 * ok / max(solid, 1)),
-        "| longer than %d s | %d (longest %.1f s) |" % (LIMIT_SECONDS, sum(r["seconds"] > LIMIT_SECONDS for r in results),
-                                                 max(r["seconds"] for r in results)),
-        "",
-        "`what prescore did` lists its automatic choices (prescore/adapt.h): `size` (a file without units "
-        "made 0.3 m long), `repair` (alpha wrap), `resolution` (raised where Mesh_3 lost thin parts), "
-        "`thicken` (walls given a thickness), `slivers` (small tet clusters joined to their pieces), `pieces` "
-        "(raised to the number of separate bodies), `render surfaces` (drawn with the input's own triangles "
-        "where the tets came from a wrap, prescore/render_surface.h). Times are wall times on a shared 2-core "
-        "machine, with "
-        "whatever else ran beside them.",
-        "",
-        "| file | format | result | what prescore did | pieces | tets | time (s) |",
-        "| --- | --- | --- | --- | --- | --- | --- |",
-    ]
-    for r in results:
-        f = r["file"]
-        shown = os.path.relpath(f, workdir) if f.startswith(workdir) else f
-        fmt = f.rsplit(".", 1)[-1].lower()
-        result = verdict(r)
-        if result != "ok":
-            result += ": " + short(r["error"]) if r["error"] else ""
-        auto = "; ".join(re.sub(r" \(.*", "", a) for a in r["auto"]) or "-"
-        lines.append("| %s | %s | %s | %s | %s | %s | %.1f |" % (shown.replace("|", "\\|"), fmt, result.replace("|", "\\|"),
-                                                            auto.replace("|", "\\|"), r["pieces"], r["tets"], r["seconds"]))
-    with open(path + ".tmp", "w") as out:
-        out.write("\n".join(lines) + "\n")
-    os.replace(path + ".tmp", path)
-
-
 def books_ratio(r):
     """(injected + held) / (alpha x stored): a break's alpha E is given back as kinetic energy, or held
     in a crack its joints keep closed until a later break opens it (docs/physics.md section 4)."""
     return (r["injected"] + r.get("held", 0.0)) / (r["alpha"] * r["stored"])
-
-
-def held_J(r):
-    """The energy a run ends with held in cracks, 0 when it is round-off (within 1e-9 of alpha x
-    stored, as the run summary's books line)."""
-    held = r.get("held", 0.0)
-    return held if abs(held) > 1e-9 * r["alpha"] * r["stored"] else 0.0
 
 
 def run_joints(out):
@@ -243,89 +171,72 @@ def run_joints(out):
     return joints, removed
 
 
-def write_run_table(results, path, workdir):
-    ok = [r for r in results if verdict(r) == "ok"]
-    for r in ok:  # a journal written before runs kept their warnings: read them from the run's summary
-        if "warnings" not in r:
-            try:
-                with open(os.path.join(run_dir(workdir, r["file"]), "summary.json")) as f:
-                    r["warnings"] = run_warnings(json.load(f))
-            except (OSError, KeyError, ValueError):
-                r["warnings"] = []
-    for r in ok:
-        r["joints"], r["removed"] = run_joints(run_dir(workdir, r["file"]))
-    stretch = sorted(r["removed"] / r["stored"] for r in ok if r["removed"] is not None and r["stored"] > 0)
-    failed = [r for r in results if verdict(r).startswith("FAIL")]
-    ratios = [books_ratio(r) for r in ok if r["alpha"] > 0 and r["stored"] > 0]
-    seen = [r for r in ok if "in_view_first" in r]
-    lines = [
-        "# The mesh corpus, run",
-        "",
-        "`shatter run MESH` (the default shot: a 1.5 m drop onto the ground, the defaults of assets/bunny.toml) on "
-        "every mesh of the corpus (docs/corpus.md): `make corpus-run` (scripts/corpus.py --run). A file passes when "
-        "the run makes a movie, or is refused with exit code 3 as no solid mesh; anything else, or a run still going "
-        "after %d s, fails. Times are wall times of the whole job (prescore, simulate, render, encode, .glb, report) "
-        "on a shared 2-core machine." % RUN_KILL_SECONDS,
-        "",
-        "| | |",
-        "| --- | --- |",
-        "| movies made | %d |" % len(ok),
-        "| refused: no solid mesh | %d |" % sum(verdict(r) == "refused" for r in results),
-        "| failed | %d |" % len(failed),
-        "| job time | median %.1f s, longest %.1f s |" % (sorted(r["seconds"] for r in ok)[len(ok) // 2] if ok else 0,
-                                                       max((r["seconds"] for r in ok), default=0)),
-        "| runs with breaks | %d |" % sum(r["breaks"] > 0 for r in ok),
-        "| joints solved directly (the default shot's `joints = \"direct\"`) | %d |" % sum(r["joints"] == "direct" for r in ok),
-        "| what the breaking joints held by their stretch, over what their forces stored | median %.3g; within 10%% in %d "
-        "runs, over twice in %d, of %d |" % (stretch[len(stretch) // 2] if stretch else 0,
-                                            sum(abs(x - 1) <= 0.1 for x in stretch), sum(x > 2 for x in stretch),
-                                            len(stretch)),
-        "| (injected + held) / (alpha x stored) | %.4g to %.4g |" % (min(ratios, default=0), max(ratios, default=0)),
-        "| runs ending with energy held in cracks not yet opened | %d (%.0f%% of alpha x stored at most) |"
-        % (sum(held_J(r) > 0 for r in ok),
-           100 * max((r.get("held", 0) / (r["alpha"] * r["stored"]) for r in ok if r["alpha"] > 0 and r["stored"] > 0),
-                     default=0)),
-        "| runs with negative injected energy | %d |" % sum(r["injected"] < 0 for r in ok),
-        "| runs with warnings (summary.json: model.warnings, simulation.warnings) | %d |" % sum(bool(r["warnings"]) for r in ok),
-        "| every piece in view in the first frame | %d of %d |" % (sum(r["in_view_first"] == 100 for r in seen), len(seen)),
-        "| at least 90%% of the pieces in view in every frame | %d of %d |" % (sum(r["in_view_least"] >= 90 for r in seen),
-                                                                              len(seen)),
-        "| at most 1 s still at the end | %d of %d |" % (sum(r["still_s"] <= 1.0 for r in seen), len(seen)),
-        "",
-        "| file | result | pieces | breaks | fragments | stored (J) | (injected + held) / (alpha x stored) | held (J) "
-        "| in view: first, least (%) "
-        "| still at end (s) | warnings | time (s) |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
-    ]
+def shown_file(workdir, f):
+    return os.path.relpath(f, workdir) if f.startswith(workdir) else f
+
+
+def prescore_record(results, workdir):
+    """The record's rows (corpus_pages.PRESCORE_FIELDS) of a prescore run."""
+    return [{"file": shown_file(workdir, r["file"]), "code": r["code"], "seconds": r["seconds"], "pieces": r["pieces"],
+             "tets": r["tets"], "auto": "; ".join(re.sub(r" \(.*", "", a) for a in r["auto"]), "error": r["error"]}
+            for r in results]
+
+
+def run_record(results, workdir):
+    """The record's rows (corpus_pages.RUN_FIELDS) of a `shatter run` of each mesh; reads what the
+    journal does not keep (the joint solve, the joints' stretch) from each run's files."""
+    rows = []
     for r in results:
-        f = r["file"]
-        shown = (os.path.relpath(f, workdir) if f.startswith(workdir) else f).replace("|", "\\|")
-        result = verdict(r)
-        if result != "ok":
-            lines.append("| %s | %s | | | | | | | | | | %.1f |" % (
-                shown, (result + (": " + short(r["error"]) if r["error"] else "")).replace("|", "\\|"), r["seconds"]))
-            continue
-        ratio = "%.4f" % books_ratio(r) if r["alpha"] > 0 and r["stored"] > 0 else "-"
-        view = "%d, %d" % (r["in_view_first"], r["in_view_least"]) if "in_view_first" in r else "-"
-        still = "%.2f" % r["still_s"] if "still_s" in r else "-"
-        lines.append("| %s | ok | %s | %d | %d | %.3g | %s | %.3g | %s | %s | %s | %.1f |" % (
-            shown, r["pieces"], r["breaks"], r["fragments"], r["stored"], ratio, held_J(r), view, still,
-            "; ".join(short(w, 200) for w in r["warnings"]).replace("|", "\\|").replace("\n", " ") or "-", r["seconds"]))
-    with open(path + ".tmp", "w") as out:
-        out.write("\n".join(lines) + "\n")
-    os.replace(path + ".tmp", path)
+        row = {"file": shown_file(workdir, r["file"]), "code": r["code"], "seconds": r["seconds"],
+               "movie": r.get("movie", False), "error": r["error"], "pieces": r["pieces"]}
+        if verdict(r) == "ok":
+            out = run_dir(workdir, r["file"])
+            warnings = r.get("warnings")
+            if warnings is None:  # a journal written before runs kept their warnings: read them from the run's summary
+                try:
+                    with open(os.path.join(out, "summary.json")) as f:
+                        warnings = run_warnings(json.load(f))
+                except (OSError, KeyError, ValueError):
+                    warnings = []
+            joints, removed = run_joints(out)
+            row.update(alpha=r["alpha"], breaks=r["breaks"], fragments=r["fragments"], stored_J=r["stored"],
+                       injected_J=r["injected"], held_J=r.get("held", 0.0),
+                       books=books_ratio(r) if r["alpha"] > 0 and r["stored"] > 0 else None,
+                       in_view_first=r.get("in_view_first"), in_view_least=r.get("in_view_least"),
+                       still_s=r.get("still_s"), joints=joints,
+                       stretch=removed / r["stored"] if removed is not None and r["stored"] > 0 else None,
+                       warnings="; ".join(short(w, 200) for w in warnings))
+        rows.append(row)
+    return rows
+
+
+def pages(args):
+    """--render-only and --check: the pages from their records, no run."""
+    failed = 0
+    for page in args.render_only or []:
+        corpus_pages.write_atomic(page, corpus_pages.render(page))
+        print("%s: written from %s" % (page, corpus_pages.record_path(page)))
+    for page in args.check or []:
+        failed += corpus_pages.check(page)
+    return 1 if failed else 0
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("shatter")
-    ap.add_argument("workdir")
+    ap.add_argument("shatter", nargs="?")
+    ap.add_argument("workdir", nargs="?")
     ap.add_argument("--all", action="store_true", help="the whole corpus")
     ap.add_argument("--sample", help="a TSV of FILE, EXPECTED EXIT CODE, TEXT THE MESSAGE CONTAINS")
-    ap.add_argument("--table", help="write the Markdown table here")
+    ap.add_argument("--table", metavar="PAGE", help="write the page here, and its record beside it (PAGE's .tsv)")
     ap.add_argument("--run", action="store_true", help="`shatter run MESH` instead of `shatter prescore MESH`")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--render-only", nargs="+", metavar="PAGE", help="write each PAGE again from its record; runs nothing")
+    ap.add_argument("--check", nargs="+", metavar="PAGE", help="exit 1 when a PAGE differs from what its record gives")
     args = ap.parse_args()
+    if args.render_only or args.check:
+        return pages(args)
+    if not args.shatter or not args.workdir:
+        ap.error("SHATTER and WORKDIR are needed to run the corpus")
     workdir = os.path.abspath(args.workdir)
     os.makedirs(workdir, exist_ok=True)
     expected = {}
@@ -384,7 +295,8 @@ def main():
               (sum(verdict(r) == "ok" for r in results), min(ratios, default=0), max(ratios, default=0),
                sum(r.get("injected", 0) < 0 for r in results)))
     if args.table:
-        (write_run_table if args.run else write_table)(results, args.table, workdir)
+        corpus_pages.write_record((run_record if args.run else prescore_record)(results, workdir), args.table, args.run)
+        corpus_pages.write_atomic(args.table, corpus_pages.render(args.table))
     return 1 if failures else 0
 
 

@@ -3,10 +3,10 @@
 
     /usr/bin/python3 scripts/study_charts.py [RESULTS_DIR] [IMAGES_DIR]
 
-Defaults: bench/results/study and docs/images. Writes study-*.png (small PNGs) and prints the
-markdown tables docs/accuracy.md quotes. Needs Debian's matplotlib (python3-matplotlib).
+Defaults: bench/results/study and docs/images. Writes study-*.png (small PNGs). The tables of the
+same files are scripts/study_tables.py's (docs/results/study.md), whose helpers this uses, so that
+a chart's knee and the table's are one computation. Needs Debian's matplotlib (python3-matplotlib).
 """
-import csv
 import math
 import os
 import sys
@@ -18,28 +18,16 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 
+import study_tables  # noqa: E402  (scripts/, this file's folder)
+from study_tables import CLASSES, knee, num, yes  # noqa: E402
+
 RESULTS = sys.argv[1] if len(sys.argv) > 1 else "bench/results/study"
 IMAGES = sys.argv[2] if len(sys.argv) > 2 else "docs/images"
 DPI = 80
 
 
 def read(name):
-    path = os.path.join(RESULTS, name)
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def num(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return math.nan
-
-
-def yes(x):
-    return str(x).strip().lower() in ("1", "true")
+    return study_tables.read(RESULTS, name)
 
 
 def save(fig, name):
@@ -60,16 +48,6 @@ def row_legend(axes):
     return handles, labels
 
 
-def knee(points):
-    """The cheapest point whose error is within 2x of the smallest error on the curve."""
-    ok = [p for p in points if math.isfinite(p[1]) and p[1] >= 0]
-    if not ok:
-        return None
-    best = min(p[1] for p in ok)
-    good = [p for p in ok if p[1] <= 2 * max(best, 1e-9)]
-    return min(good, key=lambda p: p[0])
-
-
 KNOB_STYLE = {
     "substeps": ("C0", "o"),
     "iterations": ("C1", "s"),
@@ -87,7 +65,6 @@ def cost_error():
     scenes = [s for s in ["rig", "beam", "plate", "chain", "bunny"] if any(r["scene"] == s for r in rows)]
     if not scenes:
         return
-    knees = []
     fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 3.6), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
         ref = [r for r in rows if r["scene"] == scene and r["knob"] == "reference"]
@@ -115,7 +92,6 @@ def cost_error():
                     k = knee(pts)
                     if k:
                         ax.plot([k[0]], [max(k[1], FLOOR_MM)], "o", mfc="none", mec="r", ms=12, mew=1.5, zorder=6)
-                        knees.append((scene, knob, k[2], k[0], k[1]))
         if ref:
             ax.axvline(num(ref[0]["wall_per_sim_s"]), color="0.6", lw=0.8, ls="--")
         ax.set_xscale("log")
@@ -131,9 +107,7 @@ def cost_error():
     fig.suptitle("Cost against error, one knob at a time (star: study default; red ring: knee; dashed: reference)",
                  fontsize=10)
     save(fig, "study-cost-error.png")
-    print("\n| scene | knob | knee value | wall s per sim s | error (mm) |\n| --- | --- | --- | --- | --- |")
-    for scene, knob, value, cost, err in knees:
-        print(f"| {scene} | {knob} | {float(value):g} | {cost:.3g} | {err:.3g} |")
+
 
 
 def first_break():
@@ -185,7 +159,6 @@ def identities():
     save(fig, "study-stiffness.png")
 
 
-CLASSES = ["stable", "refused", "nan", "energy_growth", "cascade", "fly_apart"]
 COLOURS = ["#4caf50", "#bdbdbd", "#212121", "#e53935", "#fb8c00", "#8e24aa"]
 
 
@@ -226,10 +199,7 @@ def stability():
                      fontsize=9)
         fig.tight_layout()
         save(fig, f"study-stability-{m.replace('_', '-')}.png")
-        print(f"\nstability {m}: " + "; ".join(
-            f"{meth}: " + ", ".join(f"{c} {sum(1 for r in mr if r['method'] == meth and r['class'] == c)}"
-                                    for c in CLASSES if any(r['method'] == meth and r['class'] == c for r in mr))
-            for meth in methods))
+
 
 
 def methods():
@@ -264,43 +234,7 @@ def methods():
     axes[3].set_yscale("symlog", linthresh=0.1)
     fig.legend(loc="lower center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, -0.08))
     save(fig, "study-methods.png")
-    print("\n| scene | method | wall s / sim s | breaks | first break (s) | stored E (J) | injected (J) | "
-          "injected - alpha E | momentum work (J) | world: + momentum work - alpha E | fragments | KE +0.1 s (J) | "
-          "from plain (mm) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for r in rows:
-        print(f"| {r['scene']} | {r['method']} | {num(r['wall_per_sim_s']):.3g} | {r['breaks']} | "
-              f"{num(r['first_break_s']):.4g} | {num(r['stored_J']):.3g} | {num(r['injected_J']):.3g} | "
-              f"{100 * num(r['books_error']):+.3g}% | {num(r.get('momentum_work_J')):.3g} | "
-              f"{100 * num(r.get('world_books_error')):+.3g}% | {r['fragments']} | "
-              f"{num(r['kinetic_0.1s_after_J']):.3g} | {1e3 * num(r['difference_from_plain_m']):.3g} |")
 
-
-def tables():
-    rows = read("speed.csv")
-    if rows:
-        print("\n| scene | bodies | constraints | prescore (s) | simulate (s / sim s) | energize (s / sim s) | "
-              "render (s / sim s) | total (s / sim s) |")
-        print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-        for r in rows:
-            print(f"| {r['scene']} | {r['bodies']} | {r['constraints']} | {num(r['prescore_s']):.3g} | "
-                  f"{num(r['simulate_per_sim_s']):.3g} | {num(r['energize_per_sim_s']):.2g} | "
-                  f"{num(r['render_per_sim_s']):.3g} | {num(r['total_per_sim_s']):.3g} |")
-    rows = read("continuum.csv")
-    if rows:
-        print("\n| iterations | first break (s) | M (N m) | stored at break (J) | Euler-Bernoulli (J) | ratio | "
-              "simulate (s) | Euler-Bernoulli (s) |")
-        print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-        for r in rows:
-            print(f"| {r['iterations']} | {num(r['first_break_s']):.4g} | {num(r['moment_Nm']):.4g} | "
-                  f"{num(r['stored_J']):.4g} | {num(r['euler_bernoulli_J']):.4g} | {num(r['ratio']):.3g} | "
-                  f"{num(r['wall_s']):.3g} | {num(r['euler_bernoulli_s']):.2g} |")
-    rows = read("identities_double.csv") + read("identities_float.csv")
-    energy = [r for r in rows if r["measure"] == "energy"]
-    if energy:
-        print("\n| precision | method | max per-break energy identity error |\n| --- | --- | --- |")
-        for r in energy:
-            print(f"| {r['precision']} | {r['method']} | {num(r['error']):.3g} |")
 
 
 def smallest():
@@ -347,32 +281,7 @@ def smallest():
     fig.suptitle("The smallest model that serves: one knob at a time down from the finest (dotted: tolerance; "
                  "dashed: the finest model's cost)", fontsize=10)
     save(fig, "study-smallest.png")
-    print("\n| shot | role | knob | value | bodies | constraints | collision parts | tets | substeps | "
-          "CPU s / sim s | breaks | fragments | first break (s) | traj RMS (mm) | early RMS (mm) | scatter (m) | "
-          "KE 0.1 s after (J) | spread (J) | worst / tol |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for r in rows:
-        refused = " (refused)" if yes(r["refused"]) else ""
-        print(f"| {r['shot']} | {r['role']} | {r['knob']} | {r['value']}{refused} | {r['bodies']} | "
-              f"{r['constraints']} | {r['collision_parts']} | {r['tets']} | {r['substeps']} | "
-              f"{num(r['cpu_per_sim_s']):.3g} | {num(r['breaks']):.4g} | {num(r['fragments']):.3g} | {num(r['first_break_s']):.4g} | "
-              f"{1e3 * num(r['trajectory_rms_m']):.3g} | {1e3 * num(r['early_rms_m']):.3g} | "
-              f"{num(r['scatter_m']):.3g} | {num(r['kinetic_after_J']):.3g} | {num(r['spread_after_J']):.3g} | {num(r['worst_ratio']):.3g} |")
-    print("\n| shot | measure | tolerance | finest | chosen | chosen worst / tol | shipped | shipped worst / tol |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    for r in summary.values():
-        if r["measure"] == "trajectory":
-            tol = f"RMS {1e3 * num(r['tol_trajectory_m']):.3g} mm, first break {1e3 * num(r['tol_first_break_s']):.3g} ms"
-        else:
-            tol = (f"first break {1e3 * num(r['tol_first_break_s']):.3g} ms, broken {num(r['tol_broken_fraction']):.3g}, "
-                   f"fragments {num(r['tol_fragments']):.3g}, scatter {100 * num(r['tol_scatter_rel']):.3g}%, "
-                   f"kinetic energy 0.1 s after {100 * num(r['tol_kinetic_rel']):.3g}%, "
-                   f"its spread {100 * num(r['tol_spread_rel']):.3g}%, "
-                   f"early RMS {1e3 * num(r['tol_early_m']):.3g} mm")
-        print(f"| {r['shot']} | {r['measure']} | {tol} | {r['finest']} ({r['finest_size']}; "
-              f"{num(r['finest_cpu_per_sim_s']):.3g} s/s) | {r['chosen']} ({r['chosen_size']}; "
-              f"{num(r['chosen_cpu_per_sim_s']):.3g} s/s) | {num(r['chosen_worst_ratio']):.3g} | {r['shipped']} "
-              f"({r['shipped_size']}; {num(r['shipped_cpu_per_sim_s']):.3g} s/s) | {num(r['shipped_worst_ratio']):.3g} |")
+
 
 
 def continuum():
@@ -421,20 +330,7 @@ def continuum():
     fig.suptitle("The rigid method against the continuum reference: cost and error per alpha (red ring: best alpha)",
                  fontsize=10)
     save(fig, "study-continuum.png")
-    print("\n| scene | best alpha | its energy error | alpha 0 (plain) | alpha 1 | first break, rigid - reference (ms) "
-          "| rigid CPU (s) | reference CPU (s) | cost ratio |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for scene in scenes:
-        rows = read(f"fem_{scene}.csv")
-        rigid = [r for r in rows if r["method"] == "rigid"]
-        ref = [r for r in rows if r["method"] != "rigid"][0]
-        best = min(rigid, key=lambda r: num(r["energy_error"]))
-        at = {num(r["alpha"]): r for r in rigid}
-        cpus = [num(r["cpu_s"]) for r in rigid]
-        dt = [1e3 * (num(r["first_break_s"]) - num(ref["first_break_s"])) for r in rigid]
-        print(f"| {scene} | {num(best['alpha']):g} | {num(best['energy_error']):.3g} | "
-              f"{num(at[0.0]['energy_error']):.3g} | {num(at[1.0]['energy_error']):.3g} | "
-              f"{min(dt):+.2f} to {max(dt):+.2f} | {min(cpus):.2f} to {max(cpus):.2f} | {num(ref['cpu_s']):.0f} | "
-              f"{num(ref['cpu_s']) / max(cpus):.0f} to {num(ref['cpu_s']) / min(cpus):.0f} |")
+
 
 
 if __name__ == "__main__":
@@ -443,6 +339,5 @@ if __name__ == "__main__":
     identities()
     stability()
     methods()
-    tables()
     smallest()
     continuum()

@@ -1,6 +1,6 @@
 // Bullet's sequential-impulse solver, with two per-step costs removed that a structure of
 // thousands of point constraints pays for nothing (measured on a 1,024-piece plate with 7,936
-// constraints; docs/benchmarks.md):
+// constraints; docs/log.md):
 // - Every iteration, btSequentialImpulseConstraintSolver::solveSingleIteration walks all
 //   constraints to call solveConstraintObsolete, a no-op for every constraint type but the cone
 //   twist, after looking up both solver bodies: ~10% of a step. We add only point constraints

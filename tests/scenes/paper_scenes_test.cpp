@@ -1,7 +1,8 @@
 // The paper's scenes as users run them (assets/*.toml -> prescore_shot -> simulate), shortened:
 // each fractures, the energy books balance per break, the energy given back grows with alpha
 // where the break is quasi-static (beam, chain), the chain breaks once, and the plate's cubes
-// fly apart over the sphere. docs/scenes.md lists the full measurements.
+// fly apart over the sphere. docs/results/scenes.md has the sweeps' tables, docs/log.md ("moved
+// from docs/scenes.md") the multi-drop measurements.
 #include <gtest/gtest.h>
 
 #include <cmath>
