@@ -34,6 +34,8 @@ PACKAGES=(
   ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
   # the report pages' tests: headless Chromium opens them (tests/pipeline/report_page_test.cpp)
   chromium
+  # the Blender add-on's test: Debian's Blender, headless (tests/blender/)
+  blender
 )
 
 if [ "${1:-}" = "--fuzz" ]; then
