@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= 2
 
-.PHONY: all deps configure build demo test refresh bench asan fuzz study corpus corpus-run clean
+.PHONY: all deps configure build demo test refresh bench asan fuzz study corpus corpus-run blender-addon blender-screenshot clean
 
 all: build
 
@@ -33,6 +33,16 @@ refresh: build
 
 bench: build
 	@bash scripts/bench.sh $(BUILD)
+
+# The Blender add-on's .zip alone, BUILD/shatter_blender.zip (`build` makes it too; docs/blender.md).
+blender-addon: configure
+	@cmake --build $(BUILD) --target blender_addon
+
+# The screenshot in docs/blender.md, made again: the add-on run in Blender's window on a virtual
+# display (xvfb-run), the window saved to docs/images/blender-bunny.png.
+blender-screenshot: blender-addon
+	@cmake --build $(BUILD) -j $(JOBS) --target shatter
+	@/usr/bin/python3 scripts/blender_screenshot.py $(BUILD) docs/images/blender-bunny.png
 
 # Reliability (docs/reliability.md). asan: every test under AddressSanitizer + UBSan (gcc, -O1)
 # in build-asan. fuzz: each libFuzzer target (clang) for FUZZ_SECONDS on its seed corpus.

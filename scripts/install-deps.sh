@@ -34,6 +34,9 @@ PACKAGES=(
   ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
   # the report pages' tests: headless Chromium opens them (tests/pipeline/report_page_test.cpp)
   chromium
+  # the Blender add-on's test: Debian's Blender, headless (tests/blender/); xvfb gives Blender a
+  # window on a virtual display for the screenshot in docs/blender.md (make blender-screenshot)
+  blender xvfb
 )
 
 if [ "${1:-}" = "--fuzz" ]; then
