@@ -180,7 +180,7 @@ def write_if_changed(path, text):
 PAGE_SCRIPTS = [
     ["scripts/study_tables.py"],
     ["scripts/bench_tables.py"],
-    ["scripts/corpus.py", "--render-only"],
+    ["scripts/corpus.py", "--render-only", "docs/results/corpus.md", "docs/results/corpus-run.md"],
 ]
 
 
