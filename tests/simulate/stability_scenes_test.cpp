@@ -8,9 +8,12 @@
 
 #include "bench/study_stability_scenes.h"
 #include "simulate/simulate.h"
+#include "support/pinned_figures.h"
 
 namespace shatter::study::scenes3d {
 namespace {
+
+using testing_support::expect_pinned;
 
 Verdict default_direct(StudyCase c) {
     c.input.simulate.method = EnergizeMethod::Exact;
@@ -142,7 +145,8 @@ TEST(StabilityScenes, WeldedTowerHitByAFastSphereStaysWhole) {
 // (every broken joint within 8 cm of a struck point, the hit cube's and its ring's), and no joint
 // that holds opens 1 mm. With the shipped settings (direct joints) at the scene's step no joint
 // breaks (omega h = 12 there: the impacts' peak forces are not resolved, and the run warns so);
-// with the automatic step, which resolves them, 32 (measured).
+// with the automatic step, which resolves them, more than 20 (the count is pinned:
+// tests/pins/figures.tsv).
 TEST(StabilityScenes, AWallHitByThreeBallsCracksOnlyWhereTheyStrike) {
     for (bool automatic : {false, true}) {
         StudyCase c = wall_case();
@@ -154,6 +158,7 @@ TEST(StabilityScenes, AWallHitByThreeBallsCracksOnlyWhereTheyStrike) {
         EXPECT_EQ(v.cls, Stability::Stable) << "automatic step " << automatic;
         if (automatic) {
             EXPECT_GT(v.breaks, 20u);
+            expect_pinned("stability_scenes.wall.automatic_step.breaks", double(v.breaks));
         }
         EXPECT_EQ(v.far_breaks, 0u) << "automatic step " << automatic;
         EXPECT_LE(v.measure, kWallDamageRadius) << "automatic step " << automatic;
