@@ -2,6 +2,7 @@
 // docs/render.md from the declarations (core/setting_table.h), between their
 // "<!-- settings:SECTION -->" markers. tests/core/settings_doc_test.cpp fails when they differ.
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "cmd/command.h"
 #include "core/atomic_file.h"

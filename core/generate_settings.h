@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/geometry.h"
 #include "core/settings.h"

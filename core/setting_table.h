@@ -26,6 +26,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/shot.h"
 #include "core/toml_reader.h"

@@ -1,6 +1,7 @@
 // The [render] table (core/setting_table.h): what render reads. Colours are sRGB "#rrggbb";
 // camera_position, camera_target and piece_colours have their readers in core/shot_render.cpp.
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/setting_builders.h"
 

@@ -2,6 +2,7 @@
 // reads, and the tables of one entry of the arrays of tables of [scene] and [object]
 // (core/shot_scene.cpp reads the entries and adds the checks that join keys).
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "core/material_presets.h"

@@ -2,6 +2,8 @@
 // its keys are declared in core/setting_table_prescore.cpp.
 
 #include "core/generate_settings.h"
+
+#include <nlohmann/json.hpp>
 #include "core/setting_table.h"
 
 namespace shatter {

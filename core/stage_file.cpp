@@ -3,6 +3,7 @@
 #include <cassert>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/binary_io.h"
 #include "core/error.h"

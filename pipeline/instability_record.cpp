@@ -1,6 +1,7 @@
 #include "pipeline/instability_record.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "simulate/simulate.h"

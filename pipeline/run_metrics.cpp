@@ -9,6 +9,8 @@
 #include <optional>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace shatter {
 
 using json = nlohmann::ordered_json;

@@ -1,6 +1,7 @@
 #include "pipeline/stage_cache.h"
 
 #include <fcntl.h>
+#include <nlohmann/json.hpp>
 #include <sys/file.h>
 #include <unistd.h>
 

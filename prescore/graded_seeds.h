@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/geometry.h"
 #include "core/scene_settings.h"

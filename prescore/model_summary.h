@@ -3,7 +3,7 @@
 // from the tets, not trusted from the file), and the model-size report.
 #pragma once
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/model.h"
 

@@ -1,5 +1,7 @@
 #include "scenes/paper_scenes.h"
 
+#include <nlohmann/json.hpp>
+
 #include "core/stage_file.h"
 #include "scenes/box_model.h"
 

@@ -3,6 +3,7 @@
 // range; the scene settings' JSON round trip, by the tables of the arrays' entries too;
 // rotations and kinematic motion against hand values.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/error.h"

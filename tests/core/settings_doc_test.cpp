@@ -1,6 +1,7 @@
 // The settings tables of docs/shot.md and docs/render.md are generated from the declarations
 // (core/setting_table.h); this keeps them equal, and checks what every declaration must have.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <set>

@@ -1,6 +1,7 @@
 // The trajectory file: exact round trip, refusal of every damaged or malformed file, the frozen
 // version-1 fixture, and the summary `shatter info` prints.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "core/atomic_file.h"
 #include "core/model_io.h"
 #include "core/trajectory.h"

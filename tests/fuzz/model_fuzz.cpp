@@ -2,6 +2,8 @@
 // result. Seeds: tests/fuzz/corpus/model/ (the frozen fixture and small variants).
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "core/model_io.h"
 #include "prescore/model_summary.h"
 #include "tests/fuzz/fuzz_support.h"

@@ -3,6 +3,7 @@
 // flags over them, every class of bad input with its exit code and no half-written PNG, and
 // every tolerance flag of diff doing what it says.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <filesystem>

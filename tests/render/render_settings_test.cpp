@@ -1,6 +1,7 @@
 // The shot's [render] section: every key read with its unit and range, strict about unknown
 // keys, colours and sample counts; and the pieces of geometry the look depends on.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/palette.h"
