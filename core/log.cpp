@@ -9,7 +9,7 @@ namespace shatter {
 bool setup_logging(const std::string& level) {
     auto lvl = spdlog::level::from_str(level);
     if (lvl == spdlog::level::off && level != "off") return false;
-    auto logger = spdlog::stderr_color_st("shatter");
+    auto logger = spdlog::stderr_color_mt("shatter");  // (mt: `shatter run` logs from the stages beside render)
     logger->set_pattern("%^%l%$: %v");
     logger->set_level(lvl);
     spdlog::set_default_logger(logger);

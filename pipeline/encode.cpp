@@ -7,16 +7,19 @@
 // metadata is not copied from the input, and the RGB -> YUV conversion is swscale's bit-exact
 // path with the BT.709 matrix (HD players assume it; the stream is tagged the same way).
 //
-// File names: ffmpeg runs in the frames directory with the relative pattern frame_%05d.png, so a
-// '%' (or anything else) in the directory's name is never seen by the image2 pattern parser;
-// the output is an absolute "file:" URL, so a ':' in it cannot be read as a protocol. Arguments
-// go as an argv vector (pipeline/process.h): no shell ever sees a name.
+// Input: the PNG files' bytes, in frame order, on ffmpeg's stdin (image2pipe, the png decoder),
+// written by us as each frame is ready; so the movie is encoded while render draws the frames
+// (pipeline/run.cpp), and ffmpeg never parses a frame's file name. The frames and the options
+// being the same, the bytes are those of ffmpeg reading frame_%05d.png itself. The output is an
+// absolute "file:" URL, so a ':' in it cannot be read as a protocol. Arguments go as an argv
+// vector (pipeline/process.h): no shell ever sees a name.
 #include "pipeline/encode.h"
 
 #include <filesystem>
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "pipeline/process.h"
 #include "pipeline/tool_output.h"
@@ -33,11 +36,15 @@ constexpr const char* kQuality = "18";       // x264 CRF: visually lossless for 
 
 std::string frame_name(uint32_t i) { return fmt::format("frame_{:05d}.png", i); }
 
-void check_frames(const std::string& frames_dir, uint32_t frames, double fps) {
+void check_rate(const std::string& frames_dir, uint32_t frames, double fps) {
     if (frames == 0) throw_input_error(frames_dir, "no frames to encode (0 frames)", "render the frames first");
     if (!(fps > 0.0 && fps <= 1000.0))
         throw_input_error(frames_dir, fmt::format("frame rate {} is outside (0, 1000] fps", fps),
                           "give a frame rate in (0, 1000]");
+}
+
+void check_frames(const std::string& frames_dir, uint32_t frames, double fps) {
+    check_rate(frames_dir, frames, fps);
     std::error_code ec;
     if (!fs::is_directory(frames_dir, ec))
         throw_input_error(frames_dir, "frames directory not found", "render the frames first (shatter render)");
@@ -53,11 +60,11 @@ constexpr const char* kFilters =
     "pad=ceil(iw/2)*2:ceil(ih/2)*2,"
     "scale=out_color_matrix=bt709:out_range=tv:flags=accurate_rnd+bitexact,format=yuv420p";
 
-// ffmpeg's argv, run in the frames directory; `output` absolute.
+// ffmpeg's argv, the frames' PNG bytes on its stdin; `output` absolute.
 std::vector<std::string> ffmpeg_arguments(const std::string& ffmpeg, uint32_t frames, double fps,
                                           const std::string& output) {
-    return {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-            "-framerate", fmt::format("{}", fps), "-start_number", "0", "-i", "frame_%05d.png",
+    return {ffmpeg, "-hide_banner", "-loglevel", "error", "-y",
+            "-framerate", fmt::format("{}", fps), "-f", "image2pipe", "-c:v", "png", "-i", "pipe:0",
             "-frames:v", std::to_string(frames), "-vf", kFilters,
             "-c:v", "libx264", "-preset", kPreset, "-crf", kQuality, "-threads", std::to_string(kThreads),
             "-pix_fmt", "yuv420p", "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709",
@@ -69,7 +76,7 @@ std::vector<std::string> ffmpeg_arguments(const std::string& ffmpeg, uint32_t fr
 [[noreturn]] void throw_ffmpeg_failure(const std::string& ffmpeg, const std::string& frames_dir, uint32_t frames,
                                        double fps, const std::string& mp4_path, const ProcessResult& result) {
     const std::string output = last_lines(result.err + result.out, 8);
-    const std::string rerun = command_line({frames_dir}) + " && " +
+    const std::string rerun = command_line({frames_dir}) + " && cat frame_*.png | " +
                               command_line(ffmpeg_arguments(ffmpeg, frames, fps, fs::absolute(mp4_path).string()));
     throw Error(ExitCode::Tool, fmt::format("{}: ffmpeg failed ({}) encoding {} frames of {}:\n{}\n(fix: check that the "
                                             "frames are readable PNGs of one size and that ffmpeg has libx264; to see "
@@ -80,16 +87,28 @@ std::vector<std::string> ffmpeg_arguments(const std::string& ffmpeg, uint32_t fr
 
 }  // namespace
 
-void encode_mp4(const std::string& frames_dir, uint32_t frames, double fps, const std::string& mp4_path) {
+void encode_mp4(const std::string& frames_dir, uint32_t frames, double fps, const std::string& mp4_path,
+                const FrameReady& ready) {
     const std::optional<std::string> ffmpeg = find_program("ffmpeg");
     if (!ffmpeg)
         throw Error(ExitCode::Tool, mp4_path + ": ffmpeg not found on PATH, cannot encode the MP4 "
                                     "(fix: install ffmpeg: make deps, or apt-get install ffmpeg)");
-    check_frames(frames_dir, frames, fps);
+    if (ready)
+        check_rate(frames_dir, frames, fps);
+    else
+        check_frames(frames_dir, frames, fps);
     ToolOutput output(mp4_path, ".mp4");  // removed again unless committed
     ProcessOptions options;
-    options.working_directory = frames_dir;
-    const ProcessResult result = run_process(ffmpeg_arguments(*ffmpeg, frames, fps, output.path()), options);
+    options.stdin_stream = true;
+    ChildProcess child(ffmpeg_arguments(*ffmpeg, frames, fps, output.path()), options);  // killed unless waited for
+    for (uint32_t i = 0; i < frames; ++i) {
+        const std::string frame = (fs::path(frames_dir) / frame_name(i)).string();
+        if (ready && !ready(i))
+            throw_input_error(frame, fmt::format("frame {} of {} was not drawn", i, frames),
+                              "render all frames first (shatter render)");
+        if (!child.write_stdin(read_file(frame, "frame"))) break;  // ffmpeg stopped: its result says why
+    }
+    const ProcessResult result = child.wait();
     if (!result.ok()) throw_ffmpeg_failure(*ffmpeg, frames_dir, frames, fps, mp4_path, result);
     output.commit();
 }

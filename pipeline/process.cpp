@@ -160,6 +160,7 @@ struct ChildProcess::State {
     int stdin_fd = -1, stdout_fd = -1, stderr_fd = -1;
     std::string stdin_data;
     size_t stdin_written = 0;
+    bool stdin_stream = false;  // stdin stays open between writes until close_stdin
     ProcessResult result;
     bool reaped = false;
 
@@ -176,7 +177,7 @@ struct ChildProcess::State {
     void pump(int timeout_ms) {
         pollfd fds[3];
         int n = 0;
-        if (stdin_fd >= 0) fds[n++] = {stdin_fd, POLLOUT, 0};
+        if (stdin_fd >= 0 && stdin_written < stdin_data.size()) fds[n++] = {stdin_fd, POLLOUT, 0};
         if (stdout_fd >= 0) fds[n++] = {stdout_fd, POLLIN, 0};
         if (stderr_fd >= 0) fds[n++] = {stderr_fd, POLLIN, 0};
         if (n == 0) return;
@@ -195,7 +196,8 @@ struct ChildProcess::State {
         const size_t chunk = std::min<size_t>(stdin_data.size() - stdin_written, 65536);
         ssize_t n = write_no_sigpipe(stdin_fd, stdin_data.data() + stdin_written, chunk);
         if (n > 0) stdin_written += size_t(n);
-        if ((n < 0 && errno != EAGAIN && errno != EINTR) || stdin_written == stdin_data.size()) {
+        const bool closed = n < 0 && errno != EAGAIN && errno != EINTR;
+        if (closed || (stdin_written == stdin_data.size() && !stdin_stream)) {
             close_fd(stdin_fd);  // done, or the child closed its stdin (EPIPE): it gets no more
             stdin_data.clear();
         }
@@ -250,13 +252,14 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const ProcessOp
         close_fd(file_fd);
     };
     try {
-        if (options.stdin_data.empty()) {
+        if (options.stdin_data.empty() && !options.stdin_stream) {
             posix_spawn_file_actions_addopen(&setup.actions, 0, "/dev/null", O_RDONLY, 0);
         } else {
             make_pipe(in_pipe, argv[0]);
             posix_spawn_file_actions_adddup2(&setup.actions, in_pipe[0], 0);
             state->stdin_fd = in_pipe[1];
-            state->stdin_data = options.stdin_data;
+            state->stdin_stream = options.stdin_stream;
+            if (!options.stdin_stream) state->stdin_data = options.stdin_data;
             ::fcntl(state->stdin_fd, F_SETFL, ::fcntl(state->stdin_fd, F_GETFL) | O_NONBLOCK);
         }
         if (!options.output_file.empty()) {
@@ -326,7 +329,24 @@ std::optional<ProcessResult> ChildProcess::poll() {
     return state_->result;
 }
 
+bool ChildProcess::write_stdin(const std::string& data) {
+    if (!state_->stdin_stream) throw Error(ExitCode::Internal, "ChildProcess::write_stdin without stdin_stream");
+    if (state_->stdin_fd < 0) return false;
+    state_->stdin_data = data;
+    state_->stdin_written = 0;
+    while (state_->stdin_fd >= 0 && state_->stdin_written < state_->stdin_data.size()) state_->pump(-1);
+    state_->stdin_data.clear();
+    state_->stdin_written = 0;
+    return state_->stdin_fd >= 0;
+}
+
+void ChildProcess::close_stdin() {
+    close_fd(state_->stdin_fd);
+    state_->stdin_data.clear();
+}
+
 ProcessResult ChildProcess::wait() {
+    if (state_->stdin_stream) close_stdin();
     while (state_->pipes_open()) state_->pump(-1);
     state_->reap(pid_, true);
     return state_->result;

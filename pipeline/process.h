@@ -24,6 +24,8 @@ std::string last_lines(const std::string& text, size_t count);
 
 struct ProcessOptions {
     std::string stdin_data;           // written to the child's stdin (then closed); "" = /dev/null
+    bool stdin_stream = false;        // a pipe that ChildProcess::write_stdin feeds as data comes, until
+                                      // close_stdin (stdin_data is ignored)
     bool capture_stdout = true;       // into ProcessResult::out; false: inherit ours
     bool capture_stderr = true;       // into ProcessResult::err; false: inherit ours
     std::string output_file;          // when set: stdout and stderr both appended to it (capture_* ignored)
@@ -57,6 +59,11 @@ public:
     ChildProcess(const ChildProcess&) = delete;
     ChildProcess& operator=(const ChildProcess&) = delete;
     int pid() const { return pid_; }
+    // With ProcessOptions::stdin_stream: writes `data` to the child's stdin, reading its output
+    // meanwhile (no deadlock); false when the child has closed its stdin (it gets no more).
+    bool write_stdin(const std::string& data);
+    // The end of the stream: the child reads end of file (wait() closes it too).
+    void close_stdin();
     // Non-blocking: the result once it has ended (captured output is read when it ends).
     std::optional<ProcessResult> poll();
     ProcessResult wait();

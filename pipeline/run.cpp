@@ -1,12 +1,15 @@
 #include "pipeline/run.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 #include <fmt/format.h>
 #include <spdlog/sinks/base_sink.h>
@@ -149,6 +152,9 @@ public:
         result_.output_dir = dir_.string();
         result_.name = name_;
     }
+    ~Runner() { finish_beside(); }
+    Runner(const Runner&) = delete;
+    Runner& operator=(const Runner&) = delete;
 
     RunResult run() {
         // A missing mesh is bad input found before the output folder is touched.
@@ -158,10 +164,19 @@ public:
         AttachedSink log(run_log_sink((dir_ / "run.log").string()));
         const auto warnings = std::make_shared<WarningsKept>();
         AttachedSink keep(warnings);
+        const auto start = std::chrono::steady_clock::now();
         spdlog::info("run: {} -> {}{}", options_.shot, dir_.string(),
                      options_.overrides.empty() ? "" : fmt::format(" (--set {})", fmt::join(options_.overrides, " ")));
         steps_ = steps();
-        for (const StageStep& step : steps_) run_step(step);
+        {
+            // The stages beside render end before the log's sinks are detached, also when a stage throws.
+            struct FinishBeside {
+                Runner& runner;
+                ~FinishBeside() { runner.finish_beside(); }
+            } finish{*this};
+            for (const StageStep& step : steps_) run_step(step);
+        }
+        result_.seconds = seconds_since(start);
         write_report_times(dir_.string(), result_.stages);
         // The stages' own warnings first, from their files (also those of stages that were up to
         // date), then what this run logged besides.
@@ -188,13 +203,16 @@ public:
 private:
     std::string file(const char* suffix) const { return (dir_ / (name_ + suffix)).string(); }
 
-    // A killed run leaves NAME.tmp.PID files (never mistaken for outputs); the next run removes
-    // them. Not while render chunks of a cluster job may be writing theirs (chunks > 1).
+    // A killed run leaves NAME.tmp.PID files (never mistaken for outputs) and a tool's NAME.tmp.PID
+    // folder (pipeline/tool_output.h); the next run removes them. Not while render chunks of a
+    // cluster job may be writing theirs (chunks > 1).
     void remove_stale_temporaries() const {
         std::error_code ec;
         for (const fs::path& d : {dir_, dir_ / "frames", dir_ / ".shatter"})
             for (const auto& entry : fs::directory_iterator(d, ec))
-                if (entry.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(entry.path(), ec);
+                if (entry.path().filename().string().find(".tmp.") != std::string::npos)
+                    for (int attempt = 0; attempt < 3 && fs::exists(entry.path(), ec); ++attempt)
+                        fs::remove_all(entry.path(), ec);  // (again if a killed run's tool wrote into it meanwhile)
     }
     std::string frames_dir() const { return (dir_ / "frames").string(); }
 
@@ -240,6 +258,7 @@ private:
         bool needs_frames = false;      // a finishing stage that reads the frames
         std::function<void()> before = {};  // runs at the stage's place, asked or not
         std::function<void()> after = {};   // runs after the stage when it was asked
+        std::function<void()> compute_beside = {};  // compute, beside render (encode: waiting for each frame)
     };
 
     std::vector<StageStep> steps() {
@@ -256,7 +275,11 @@ private:
             {.stage = Stage::Encode, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
              .files = {{"", name_ + ".mp4"}},
              .compute = [&] { encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4")); },
-             .what = "the movie", .needs_frames = true},
+             .what = "the movie", .needs_frames = true,
+             .compute_beside = [&] {
+                 encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4"),
+                            [&](uint32_t f) { return frame_drawn(f); });
+             }},
             {.stage = Stage::Sheet, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
              .files = {{"", name_ + ".contact.png"}},
              .compute = [&] { write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png")); },
@@ -302,7 +325,13 @@ private:
     }
 
     void run_step(const StageStep& step) {
+        if (step.stage == Stage::Report) join_beside();  // (before summary.json, which lists their files)
         StageReport& r = report(step.stage);
+        if (const auto b = std::find_if(beside_.begin(), beside_.end(), [&](const Beside& b) { return b.stage == step.stage; });
+            b != beside_.end()) {
+            b->index = result_.stages.size() - 1;  // running beside render; joined before the report
+            return;
+        }
         if (step.before) step.before();
         const bool finishing = step.kind == StageKind::Finishing;
         if (!asked(step.stage) && (finishing || !needed_later(step.stage))) return;
@@ -476,8 +505,100 @@ private:
             if (entry.path().filename().string().rfind("frame_", 0) == 0) fs::remove(entry.path(), ec);
         write_file_atomic(key_file.string(), render_key() + "\n");
     }
+    // ---- encode, plot and export beside render
+    //
+    // Started once the frames folder is ready (prepare_frames_dir: no stale frame left to read),
+    // each on a thread of its own, with what they read (model, trajectory, their hashes, the render
+    // key) loaded first, so that the threads share only const state, the stamps' files (one per
+    // stage) and the logger. Encode waits for each frame's file (written atomically by render's
+    // writer) until render is over. A chunk of a cluster render leaves encode to the final job.
+    struct BesideResult {
+        StageReport report;
+        int exit_code = 0;
+    };
+    struct Beside {
+        Stage stage;
+        std::future<BesideResult> done;
+        size_t index = SIZE_MAX;  // its report in result_.stages, once the loop is at its place
+    };
+    void start_beside() {
+        model();
+        trajectory();
+        model_hash();
+        trajectory_hash();
+        render_key();
+        render_over_ = false;
+        for (Stage s : {Stage::Encode, Stage::Plot, Stage::Export}) {
+            if (!asked(s) || (s == Stage::Encode && options_.chunks != 1)) continue;
+            const StageStep* step = &step_of(s);
+            beside_.push_back({s, std::async(std::launch::async, [this, step] { return finish_beside_render(*step); })});
+        }
+    }
+    BesideResult finish_beside_render(const StageStep& step) {
+        BesideResult out{.report = {step.stage, StageOutcome::Ran, 0, {}, true}};
+        const auto start = std::chrono::steady_clock::now();
+        const std::string name = to_string(step.stage);
+        try {
+            const std::string key = key_of(step);
+            if (current(step, key) && !options_.force) {
+                out.report.outcome = StageOutcome::UpToDate;
+            } else {
+                stamps_.remove(name);
+                (step.compute_beside ? step.compute_beside : step.compute)();
+                stamps_.write(name, key, output_names(step));
+            }
+        } catch (const Error& e) {
+            out.report.outcome = StageOutcome::Failed;
+            out.report.error = e.what();
+            out.exit_code = static_cast<int>(e.code());
+            spdlog::error("{}: {}", name, e.what());
+        } catch (const std::exception& e) {  // (a thread must not end by an exception)
+            out.report.outcome = StageOutcome::Failed;
+            out.report.error = e.what();
+            out.exit_code = static_cast<int>(ExitCode::Internal);
+            spdlog::error("{}: {}", name, e.what());
+        }
+        out.report.seconds = seconds_since(start);
+        return out;
+    }
+    // Frame f's file is there (true), or render is over without it (false).
+    bool frame_drawn(uint32_t f) {
+        const fs::path path = fs::path(frames_dir()) / frame_file_name(f);
+        for (;;) {
+            const bool over = render_over_;
+            std::error_code ec;
+            if (fs::exists(path, ec)) return true;
+            if (over) return false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+    }
+    // Their reports, in pipeline order, into the run's.
+    void join_beside() {
+        render_over_ = true;
+        for (Beside& b : beside_) {
+            BesideResult r = b.done.get();
+            if (b.index == SIZE_MAX) continue;  // (not reached: the loop passes every stage before the report)
+            result_.stages[b.index] = std::move(r.report);
+            log_outcome(result_.stages[b.index]);
+            if (r.exit_code != 0 && result_.exit_code == 0) result_.exit_code = r.exit_code;
+        }
+        beside_.clear();
+    }
+    // When the run ends by an error: the threads end, their results dropped.
+    void finish_beside() {
+        render_over_ = true;
+        for (Beside& b : beside_)
+            if (b.done.valid()) b.done.wait();
+        beside_.clear();
+    }
+
     void compute_render() {
         prepare_frames_dir();
+        start_beside();
+        struct RenderOver {
+            std::atomic<bool>& over;
+            ~RenderOver() { over = true; }
+        } render_over{render_over_};
         const RenderScene scene = make_render_scene(model(), file(".model"), trajectory(), file(".traj"));
         RenderOptions ro;
         ro.progress = options_.progress;
@@ -554,6 +675,8 @@ private:
     std::optional<Trajectory> trajectory_;
     std::optional<json> instability_;
     std::vector<StageStep> steps_;
+    std::vector<Beside> beside_;
+    std::atomic<bool> render_over_{true};
 };
 
 }  // namespace
@@ -594,9 +717,12 @@ std::string format_run_summary(const RunResult& r) {
         if (s.outcome == StageOutcome::NotAsked) continue;
         total += s.seconds;
         times += fmt::format("{}{} {:.2f}s{}", times.empty() ? "" : ", ", to_string(s.stage), s.seconds,
-                             s.outcome == StageOutcome::Ran ? "" : fmt::format(" ({})", to_string(s.outcome)));
+                             (s.outcome == StageOutcome::Ran ? "" : fmt::format(" ({})", to_string(s.outcome))) +
+                                 (s.beside_render ? " [beside render]" : ""));
     }
-    out += fmt::format("stages:   {} (total {:.2f}s)\n", times, total);
+    const bool overlapped = std::any_of(r.stages.begin(), r.stages.end(), [](const StageReport& s) { return s.beside_render; });
+    out += fmt::format("stages:   {} (total {:.2f}s{})\n", times, overlapped ? r.seconds : total,
+                       overlapped ? ", the run's wall time" : "");
     if (!r.summary.empty()) {
         const json& m = r.summary["model"];
         const json& sim = r.summary["simulation"];

@@ -3,6 +3,10 @@
 //   prescore ─► simulate ─► render ─► encode (MP4) ─► sheet (contact sheet) ─► plot (energy PNG)
 //                                                  ─► export (.glb) ─► summary.json ─► report (report.html)
 //
+// When render runs, encode, plot and export run beside it (threads; ffmpeg and python3 are
+// processes of their own): encode takes each frame as render writes it, plot and export read
+// only the model, the trajectory and the energy series. They are waited for before summary.json.
+//
 // Every stage is stamped with a key over what it read (pipeline/stage_cache.h): a re-run skips
 // the stages that are up to date, a killed run resumes where it stopped (frames one by one), and
 // the final bytes do not depend on how often the run was interrupted. The output folder:
@@ -51,12 +55,14 @@ struct StageReport {
     StageOutcome outcome = StageOutcome::NotAsked;
     double seconds = 0;   // wall time (unit: s)
     std::string error;    // when it failed
+    bool beside_render = false;  // ran beside render, its time overlapping render's (encode, plot, export)
 };
 
 struct RunResult {
     std::string output_dir;
     std::string name;                   // NAME of the files
     std::vector<StageReport> stages;    // in pipeline order
+    double seconds = 0;                 // the run's wall time, less than the stages' sum when some ran beside render (unit: s)
     nlohmann::ordered_json summary;     // what summary.json holds (empty until simulate has run)
     int exit_code = 0;                  // 0, or the exit code of the first failure (core/error.h)
     std::vector<std::string> warnings;  // what this run's stages warned of, each once, in order

@@ -1,5 +1,11 @@
 // An output file that an external tool (ffmpeg, matplotlib) writes: the tool is given a
 // temporary name beside the target, and only a finished file is renamed into place (STYLE 8).
+//
+// The temporary file sits in a folder of its own, TARGET.tmp.PID/: a tool whose parent was killed
+// (SIGKILL: nothing to stop the child) may still be writing, and the next run removes the folder
+// (pipeline/run.cpp). A tool that opened its file before keeps writing to a removed file; one that
+// opens it after finds no folder (neither ffmpeg nor matplotlib makes one); either way no file is
+// left under the output's folder.
 #pragma once
 
 #include <string>
@@ -8,10 +14,10 @@ namespace shatter {
 
 class ToolOutput {
 public:
-    // Creates TARGET.tmp.PID.EXTENSION (tools choose their format by the extension), so an
+    // Creates TARGET.tmp.PID/output.EXTENSION (tools choose their format by the extension), so an
     // unwritable directory is an Error(Io) naming `target` before the tool runs.
     ToolOutput(const std::string& target, const std::string& extension);
-    ~ToolOutput();  // removes the temporary file unless committed
+    ~ToolOutput();  // removes the temporary file (unless committed) and its folder
     ToolOutput(const ToolOutput&) = delete;
     ToolOutput& operator=(const ToolOutput&) = delete;
 
@@ -20,7 +26,7 @@ public:
     void commit();
 
 private:
-    std::string target_, tmp_;
+    std::string target_, dir_, tmp_;
     bool committed_ = false;
 };
 

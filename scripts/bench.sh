@@ -11,4 +11,6 @@ echo "simulate: steps per second and the cost of energizing (bench/results/simul
 "$BUILD/bench/simulate_bench" | tee bench/results/simulate.csv
 echo "render: frames per second of the bunny at 1280x720, the defaults and other settings, PNG writing included (bench/results/render.csv)"
 "$BUILD/bench/render_bench" | tee bench/results/render.csv
+echo "demo: the demo job (shatter run assets/bunny.toml) three times, and the same job in Blender beside it when blender is installed (bench/results/demo.csv)"
+/usr/bin/python3 scripts/demo_bench.py "$BUILD" | tee bench/results/demo.csv
 /usr/bin/python3 scripts/bench_tables.py

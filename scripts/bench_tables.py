@@ -21,6 +21,7 @@ RESULTS = "bench/results"
 PRESCORE_GOAL_S = 1.0  # the default bunny (resolution 20, solid), load to written file (unit: s)
 RENDER_GOAL_FPS = 20.0  # frames per second of the benchmark's first row, the defaults, PNG writing included
 ENERGIZE_GOAL_PERCENT = 2.0  # the share of a run spent energizing, every scene (unit: %)
+DEMO_GOAL_RATIO = 25.0  # the demo job at least this many times faster than the same job in Blender (wall time)
 STEPS_GOALS = {"bunny1000": 60.0, "plate32": 150.0, "plate100": 20.0}  # steps per second, wall time
 
 # Each table: the CSV's columns to show, in order, with their headings; "int" groups digits by
@@ -47,6 +48,8 @@ SIMULATE_COLUMNS = [("scene", "scene", "text"), ("pieces", "pieces", "int"), ("c
                     ("energize_s", "energizing s", "text"), ("energize_percent", "energizing %", "text"),
                     ("asleep", "asleep", "int"), ("iterations_per_step", "iterations a step", "text"),
                     ("poses_hash", "poses_hash", "text")]
+DEMO_STAGES = ["prescore", "simulate", "render", "encode", "sheet", "plot", "export", "report"]
+DEMO_BLENDER_PHASES = ["import", "fracture", "constraints", "bake", "render"]
 
 
 def read_csv(path):
@@ -120,6 +123,49 @@ def simulate_section(rows):
     return lines + table(rows, SIMULATE_COLUMNS)
 
 
+def median(values):
+    values = sorted(values)
+    n = len(values)
+    return (values[n // 2] + values[(n - 1) // 2]) / 2
+
+
+def demo_section(rows):
+    lines = ["## demo job against Blender (bench/results/demo.csv)", ""]
+    shatter = [r for r in rows if r["tool"] == "shatter"]
+    blender = [r for r in rows if r["tool"] == "blender"]
+    if not shatter:
+        return lines + ["No shatter run in the CSV."]
+    ours = median([float(r["total_s"]) for r in shatter])
+    if blender:
+        theirs = median([float(r["total_s"]) for r in blender])
+        ratio = theirs / ours
+        lines += ["Goal: the demo job at least %g times faster than the same job in Blender: Blender %.1f s, shatter "
+                  "%.2f s (medians of %d and %d runs, alternated), %.1f times faster, %s."
+                  % (DEMO_GOAL_RATIO, theirs, ours, len(blender), len(shatter), ratio, met(ratio >= DEMO_GOAL_RATIO)), ""]
+    else:
+        lines += ["Goal: the demo job at least %g times faster than the same job in Blender: shatter %.2f s (median of "
+                  "%d runs); no Blender run in the CSV (blender was not installed), so not measured."
+                  % (DEMO_GOAL_RATIO, ours, len(shatter)), ""]
+    lines += ["Wall time of the whole command (total) and shatter's time per stage as its summary gives it (a stage "
+              "run beside render overlaps it: the stages do not add up to the total). Seconds.", "",
+              "| run | total | " + " | ".join(DEMO_STAGES) + " | frames |", "|" + " --- |" * (len(DEMO_STAGES) + 3)]
+    for r in shatter:
+        lines.append("| %s | %s | %s | %s |" % (r["run"], r["total_s"], " | ".join(r[s + "_s"] for s in DEMO_STAGES),
+                                               r["frames"]))
+    lines.append("| median | %.2f | %s | |" % (ours, " | ".join(
+        "%.2f" % median([float(r[s + "_s"]) for r in shatter if r[s + "_s"]]) if any(r[s + "_s"] for r in shatter)
+        else "" for s in DEMO_STAGES)))
+    if blender:
+        lines += ["", "Blender (bench/blender_demo.py: Cell Fracture into 10 pieces, breakable fixed constraints between "
+                  "touching pieces, the drop baked, Workbench at 1280x720), its phases as the script times them:", "",
+                  "| run | total | " + " | ".join(DEMO_BLENDER_PHASES) + " | frames |",
+                  "|" + " --- |" * (len(DEMO_BLENDER_PHASES) + 3)]
+        for r in blender:
+            lines.append("| %s | %s | %s | %s |" % (r["run"], r["total_s"], " | ".join(
+                r["blender_%s_s" % p] for p in DEMO_BLENDER_PHASES), r["frames"]))
+    return lines
+
+
 def render_page(results):
     lines = [
         "# Benchmark results",
@@ -130,7 +176,8 @@ def render_page(results):
         "whatever else ran on it, when the benchmark last ran: to compare two builds, run them side by side "
         "(docs/benchmarks.md).",
     ]
-    for name, section in (("prescore", prescore_section), ("render", render_section), ("simulate", simulate_section)):
+    for name, section in (("prescore", prescore_section), ("render", render_section), ("simulate", simulate_section),
+                          ("demo", demo_section)):
         rows = read_csv(os.path.join(results, name + ".csv"))
         lines.append("")
         lines += section(rows) if rows else ["## %s" % name, "", "No bench/results/%s.csv yet: `make bench`." % name]

@@ -1,12 +1,16 @@
 // MP4 encoding: an H.264 yuv420p file with every frame at the (even) frame size, the same bytes
 // from two encodes, grey levels that survive the trip (limited range, no level shift), hostile directory names, and clean
-// failures (no temporary file left) for missing frames, broken frames and a missing ffmpeg.
+// failures (no temporary file left) for missing frames, broken frames and a missing ffmpeg; and frames
+// taken as they are written (as beside render) giving the bytes of frames that were all there.
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -99,6 +103,45 @@ TEST(Encode, TwoEncodesAreByteIdenticalAndGreyLevelsSurvive) {
     ASSERT_EQ(r.out.size(), 64u * 48u);
     for (uint32_t y : {4u, 24u, 44u})
         for (uint32_t x : {2u, 12u, 28u}) EXPECT_NEAR(int(uint8_t(r.out[y * 64 + x])), 90, 2) << x << "," << y;
+}
+
+// As `shatter run` encodes beside render: the frames appear one by one while ffmpeg already runs.
+TEST(Encode, FramesTakenAsTheyAppearGiveTheBytesOfFramesThatWereAllThere) {
+    TempDir tmp;
+    write_frames(tmp.path() / "all", 8, 64, 48);
+    encode_mp4((tmp.path() / "all").string(), 8, 30.0, tmp.file("all.mp4"));
+    const fs::path later = tmp.path() / "later";
+    fs::create_directories(later);
+    std::atomic<uint32_t> written{0};
+    std::thread render([&] {
+        for (uint32_t i = 0; i < 8; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            fs::copy_file(tmp.path() / "all" / fmt::format("frame_{:05d}.png", i), later / fmt::format("frame_{:05d}.png", i));
+            written = i + 1;
+        }
+    });
+    uint32_t asked = 0;
+    encode_mp4(later.string(), 8, 30.0, tmp.file("later.mp4"), [&](uint32_t f) {
+        EXPECT_EQ(f, asked++);  // in order, each once
+        while (written <= f) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        return true;
+    });
+    render.join();
+    EXPECT_EQ(slurp(tmp.file("later.mp4")), slurp(tmp.file("all.mp4")));
+}
+
+// A frame that never comes (render failed): bad input naming it, ffmpeg stopped, no temporary left.
+TEST(Encode, AFrameThatNeverComesEndsTheEncodingAndLeavesNoTemporary) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 3, 32, 32);
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 5, 30.0, tmp.file("out.mp4"), [](uint32_t f) { return f < 3; });
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("frame_00003.png"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
 }
 
 TEST(Encode, HostileDirectoryAndFileNamesWork) {

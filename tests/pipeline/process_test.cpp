@@ -59,6 +59,26 @@ TEST(Process, MegabytesOnBothPipesAndStdinDoNotDeadlock) {
     EXPECT_EQ(r.err.size(), 1048576u);
 }
 
+// A stdin fed piece by piece (encode's frames as render writes them): megabytes through cat, each
+// write reading what cat writes back meanwhile; a child that stops reading makes write_stdin false.
+TEST(Process, StdinStreamedInPiecesArrivesWholeAndAChildGoneIsSaid) {
+    ProcessOptions options;
+    options.stdin_stream = true;
+    ChildProcess cat({"/bin/cat"}, options);
+    std::string sent;
+    for (int i = 0; i < 6; ++i) {
+        const std::string piece(1 << 19, char('a' + i));
+        EXPECT_TRUE(cat.write_stdin(piece));
+        sent += piece;
+    }
+    EXPECT_EQ(cat.wait().out, sent);  // (wait closes stdin: cat ends)
+    ChildProcess quits({"/bin/true"}, options);
+    bool open = true;
+    for (int i = 0; i < 64 && open; ++i) open = quits.write_stdin(std::string(1 << 16, 'x'));
+    EXPECT_FALSE(open);
+    EXPECT_EQ(quits.wait().exit_code, 0);
+}
+
 TEST(Process, ChildThatIgnoresItsStdinDoesNotKillUsWithSigpipe) {
     ProcessOptions options;
     options.stdin_data = std::string(4 << 20, 'x');
