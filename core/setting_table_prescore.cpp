@@ -187,7 +187,11 @@ SettingsSection prescore_section() {
                      "draw each piece with the input surface cut along its fracture faces, smooth-shaded (false: its "
                      "tet surface, flat)")
                  .json_unless_default()
-                 .flag("--no-render-surface", FlagKind::SetsFalse)},
+                 .flag("--no-render-surface", FlagKind::SetsFalse),
+             boolean("crack_fairing", at(&Shot::prescore, &PrescoreSettings::crack_fairing),
+                     "render surfaces: the crack between two pieces drawn as one smooth surface (false: the zigzag of "
+                     "the tet faces between them)")
+                 .json_unless_default()},
             {}};
 }
 

@@ -73,6 +73,7 @@ struct PrescoreSettings {
     uint32_t collision_max_parts = 16;    // most convex parts per piece
     uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
+    bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
