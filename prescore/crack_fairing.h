@@ -58,7 +58,7 @@ inline constexpr size_t kCrackFairingTetsPerPiece = 100;
 
 struct CrackFairingSettings {
     double width = 1.5;   // sigma, the field's smoothing (unit: mean tet edges)
-    double keep = 0.75;
+    double keep = 0.75;   // least share of its tets' volume a piece's cell keeps before it is held
 };
 
 // A point of the arrangement: weights over up to four tet-mesh vertices (ascending ids).
