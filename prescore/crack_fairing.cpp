@@ -263,8 +263,8 @@ private:
     }
 
     // Which side of chi_p = chi_r a vertex is on: +1 kept, 0 on it, -1 cut away. A named point is
-    // tested with its lowest tied piece (the same test in every tet and piece that meets it); ties
-    // go to the lower piece.
+    // tested with its lowest tied piece (the same test in every tet and piece that meets it); a
+    // difference within kTie is a tie, and goes to the lower of p and r.
     int side(const PolyVertex& v, uint32_t bit, uint32_t p, uint32_t r) const {
         if (v.planes & (1u << bit)) return 0;
         const Name& n = names_[v.point];
