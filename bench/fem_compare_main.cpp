@@ -385,6 +385,9 @@ int compare_dropped(const std::string& scene, const SceneArgs& a, const std::str
         shot = load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/bunny_sphere.toml", overrides);
     } else {
         overrides.insert(overrides.begin(), "prescore.pieces=4");
+        // The committed reference was made with pieces of about one size (the default shot's seeds
+        // are now "impact"; with them the error moved from 0.87 to 0.78 at the same best alpha).
+        overrides.insert(overrides.begin() + 1, "prescore.seeds=uniform");
         shot = default_shot_for_mesh("/usr/share/glmark2/models/asteroid-low.3ds", overrides);
     }
     StudyCase c;

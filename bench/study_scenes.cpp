@@ -43,7 +43,7 @@ ColliderSettings sphere_collider(double radius) {
 }
 
 // The study's scenes solve their joints one row at a time, the solve whose steps, iterations and
-// failures it measures (and models of more than kAutoDirectPieces still take), but for the chain;
+// failures it measures (iterative joints, by name), but for the chain;
 // the rows that say "+direct" or "+auto" solve them directly or as shipped.
 void common_simulate(SimulateSettings& s, double duration, uint32_t iterations) {
     s.duration = duration;

@@ -51,7 +51,7 @@ void row(Csv& csv, const std::string& map, const std::string& method, const char
 }
 
 // A method's name, optionally with "+direct" for [simulate] joints = "direct" or "+auto" for the
-// shipped "auto" (direct up to kAutoDirectPieces); without either the joints are iterative.
+// shipped "auto" (direct); without either the joints are iterative.
 void apply_method_and_joints(const std::string& name, SimulationInput& in) {
     const size_t plus = name.find('+');
     apply_method(name.substr(0, plus), in);

@@ -169,8 +169,8 @@ enum class EnergizeMethod { Exact, Paper };
 enum class BreakCriterion { Force, BulletImpulse };
 // How the solver treats the joints (simulate/bullet_solver.h): "iterative": one row at a time, as
 // Bullet's sequential impulses; "direct": all joint rows of a step solved at once (a sparse
-// LDL^T) in every iteration, the contacts iterated around them; "auto": direct in a model of at
-// most kAutoDirectPieces, else iterative (simulate/simulate.h).
+// LDL^T) in every iteration, the contacts iterated around them; "auto": direct, at any piece count
+// (simulate/simulate.h).
 enum class JointSolve { Auto, Iterative, Direct };
 // When the simulation goes unstable (a NaN or Inf, or kinetic energy beyond the energy budget,
 // simulate/instability.h): "stop": end the run there, keep the frames before, mark the trajectory

@@ -191,7 +191,33 @@ SettingsSection prescore_section() {
              boolean("crack_fairing", at(&Shot::prescore, &PrescoreSettings::crack_fairing),
                      "render surfaces: the crack between two pieces drawn as one smooth surface (false: the zigzag of "
                      "the tet faces between them)")
-                 .json_unless_default()},
+                 .json_unless_default(),
+             choice<SeedMode>("seeds", at(&Shot::prescore, &PrescoreSettings::seeds),
+                              {{"uniform", SeedMode::Uniform}, {"impact", SeedMode::Impact}},
+                              "where the seed tets go: uniform: anywhere, pieces of about one size; impact: denser "
+                              "where the object first hits (a rigid flight of the shot before the split), small pieces "
+                              "there and large ones far from it; a shot without a contact falls back to uniform",
+                              "a seed placement", "use \"uniform\" or \"impact\"")
+                 .json_unless_default()
+                 .flag("--seeds"),
+             number("impact_ratio", "", at(&Shot::prescore, &PrescoreSettings::impact_ratio), kImpactRatioLimits,
+                    "impact seeds: the density of seeds at the contact over the density far from it (pieces there "
+                    "about this many times smaller)")
+                 .json_unless_default(),
+             custom("impact_radius", "length", d.impact_radius.str().c_str(), "1e-3 to 10 of the diagonal, or > 0 m",
+                    "impact seeds: the density falls off as exp(-(d / radius)^2) with the distance d from the contact",
+                    [](TomlSection& s, Shot& shot) {
+                        read_length(s, "impact_radius", shot.prescore.impact_radius, [](const std::string& where,
+                                    const Length& l, bool from_flag) {
+                            check_length(where, "impact_radius", l, kImpactRadiusRelativeLimits,
+                                         kImpactRadiusAbsoluteLimits, from_flag);
+                        });
+                    })
+                 .json([](const Shot& s, ojson& j) {
+                     const Length& r = s.prescore.impact_radius;
+                     const Length d = PrescoreSettings{}.impact_radius;
+                     if (r.value != d.value || r.relative != d.relative) j["impact_radius"] = r.str();
+                 })},
             {}};
 }
 

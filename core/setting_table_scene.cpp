@@ -411,11 +411,11 @@ SettingsSection simulate_section() {
                                 "all joint rows solved at once in every iteration (a sparse LDL^T), so their forces "
                                 "match their springs whatever the pieces' mass ratios; the contacts iterated around "
                                 "them, and a contact that holds a light piece under heavy joined ones through the "
-                                "joints (docs/physics.md, \"Direct joints\"); \"auto\": direct in a model of at most "
-                                "100 pieces, iterative in a larger one (where direct joints cost 2 to 5 times as "
-                                "much), which is warned when two joined pieces' masses differ by more than 10 times "
-                                "or two pieces of one island by more than 30 (where iterative joints start to fail: "
-                                "docs/accuracy.md, \"The stability map\")")
+                                "joints (docs/physics.md, \"Direct joints\"); \"auto\": direct, at any piece count. "
+                                "Iterative joints are warned before the run when two joined pieces' masses differ by "
+                                "more than 10 times or two pieces of one island by more than 30 (where they start to "
+                                "fail: docs/accuracy.md, \"The stability map\"), and after it when the joints that "
+                                "broke held more than 1.1 times by their stretch what their forces stored")
                  .flag("--joints")
                  .json_unless_default(),
              method(),

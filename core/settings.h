@@ -63,6 +63,11 @@ inline constexpr Limits kSizeLimits{1e-6, 1e6, "m"};
 inline constexpr Limits kWrapAlphaLimits{1e-4, 0.5, "of the diagonal"};
 inline constexpr Limits kWrapOffsetLimits{1e-6, 0.1, "of the diagonal"};
 
+// Where the flood fill's seeds go: "uniform": anywhere, pieces of about one size; "impact": denser
+// near where the object first hits (prescore/impact.h), small pieces there and large ones far
+// from it (prescore/graded_seeds.h).
+enum class SeedMode { Uniform, Impact };
+
 struct PrescoreSettings {
     uint32_t pieces = 10;                 // number of pieces (unit: count)
     uint64_t seed = 1;                    // seed of the random seed-tet choice
@@ -74,6 +79,9 @@ struct PrescoreSettings {
     uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
     bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
+    SeedMode seeds = SeedMode::Uniform;   // where the seeds go
+    double impact_ratio = 10;             // impact seeds: density at the contact over far from it (unit: 1)
+    Length impact_radius{0.25, true};     // impact seeds: fall-off radius of the density
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
@@ -83,6 +91,9 @@ inline constexpr Limits kHollowAbsoluteLimits{1e-7, 1e6, "m"};
 inline constexpr Limits kCollisionToleranceRelativeLimits{0.0, 1.0, "of the diagonal"};
 inline constexpr Limits kCollisionToleranceAbsoluteLimits{0.0, 1e6, "m"};
 inline constexpr Limits kCollisionPartsLimits{1, 4096, "parts"};
+inline constexpr Limits kImpactRatioLimits{1, 1000, "(density at the contact over far)"};
+inline constexpr Limits kImpactRadiusRelativeLimits{1e-3, 10, "of the diagonal"};
+inline constexpr Limits kImpactRadiusAbsoluteLimits{1e-7, 1e6, "m"};
 inline constexpr Limits kConstraintsPerPairLimits{0, 1e6, "constraints (0: all)"};
 
 // Throws Error(Usage or BadInput) "WHERE: KEY = VALUE is outside [MIN, MAX] UNIT" when value is

@@ -375,6 +375,11 @@ private:
         }
         json inputs = {{"mesh", mesh}, {"prescore", to_json(shot_.prescore)}};
         if (shot_.generate) inputs["generate"] = to_json(*shot_.generate);
+        // Impact seeds fly the object through the scene first (prescore/impact.h).
+        if (shot_.prescore.seeds == SeedMode::Impact && !shot_.generate) {
+            inputs["scene"] = to_json(shot_.scene);
+            inputs["object"] = to_json(shot_.object);
+        }
         return inputs;
     }
     void compute_prescore() {
@@ -515,6 +520,7 @@ private:
         const json model_settings = json::parse(m.settings_json, nullptr, false);
         if (json chosen = stage_choices(model_settings); !chosen.empty()) s["model"]["auto"] = std::move(chosen);
         if (json warned = stage_warnings(model_settings); !warned.empty()) s["model"]["warnings"] = std::move(warned);
+        if (model_settings.is_object() && model_settings.contains("impact")) s["model"]["impact"] = model_settings["impact"];
         s["alpha"] = shot_.material.alpha;
         s["simulation"] = simulation_facts(m, trajectory(), read_file(file(".breaks.jsonl"), "break log"),
                                            read_file(file(".energy.csv"), "energy series"));
@@ -556,6 +562,30 @@ RunResult run_shot(const RunOptions& options) { return Runner(options).run(); }
 
 std::vector<Stage> up_to_date_stages(const RunOptions& options) { return Runner(options).up_to_date(); }
 
+namespace {
+
+// "impact: at (x, y, z) m, speed v m/s; pieces graded ..." (seeds = "impact").
+std::string format_impact(const json& impact) {
+    const json contacts = impact.value("contacts", json::array());
+    const json* first = nullptr;
+    for (const json& c : contacts)
+        if (c.value("grades", false)) {
+            first = &c;
+            break;
+        }
+    if (!impact.value("graded", false) || !first)
+        return fmt::format("impact:   none that closes ({} contact{}); pieces not graded: uniform seeds\n",
+                           contacts.size(), contacts.size() == 1 ? "" : "s");
+    const json& p = (*first)["point_m"];
+    return fmt::format("impact:   at ({:.3f}, {:.3f}, {:.3f}) m, speed {:.2f} m/s, on the {} after {:.3f} s; pieces graded: "
+                       "seeds {:g} times denser there, falling off over {:.3g} m\n",
+                       p[0].get<double>(), p[1].get<double>(), p[2].get<double>(),
+                       (*first)["speed_m_per_s"].get<double>(), (*first)["with"].get<std::string>(),
+                       (*first)["time_s"].get<double>(), impact["ratio"].get<double>(), impact["radius_m"].get<double>());
+}
+
+}  // namespace
+
 std::string format_run_summary(const RunResult& r) {
     std::string out;
     double total = 0;
@@ -577,6 +607,7 @@ std::string format_run_summary(const RunResult& r) {
             if (list->contains("auto"))
                 for (const json& c : (*list)["auto"]) chosen += (chosen.empty() ? "" : "; ") + c.value("what", std::string());
         if (!chosen.empty()) out += fmt::format("chosen:   {} (why: report.html, summary.json)\n", chosen);
+        if (m.contains("impact")) out += format_impact(m["impact"]);
         const size_t breaks = sim["breaks"].get<size_t>(), fragments = sim["fragments"].get<size_t>();
         out += fmt::format("fracture: {} break{} -> {} fragment{}; {:.4g} J stored at the breaks, {:.4g} J injected "
                            "(alpha {:g}); peak piece speed {:.3g} m/s{}\n",

@@ -265,7 +265,7 @@ Vec3 centroid(const TetMesh& m, uint32_t t) {
 }  // namespace
 
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
-                            bool adapt, AutoChoices& choices) {
+                            bool adapt, AutoChoices& choices, const std::vector<double>& density) {
     int32_t count = 0;
     const std::vector<int32_t> cluster = tet_components(topology, {}, &count);
     std::vector<double> volume(size_t(count), 0.0);
@@ -302,22 +302,24 @@ Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, ui
                                  capped > 0 ? fmt::format(" (the largest {} of {})", kMaxBodies, large_count + int32_t(capped)) : ""));
         pieces = uint32_t(large_count);
     }
-    if (large_count == count) return partition(mesh, topology, pieces, seed);
+    if (large_count == count) return partition(mesh, topology, pieces, seed, density);
 
     // Partition the large clusters alone.
     TetMesh kept;
     kept.vertices = mesh.vertices;
     std::vector<uint32_t> kept_index;
     std::vector<uint32_t> sliver_tets;
+    std::vector<double> kept_density;
     for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
         if (large[size_t(cluster[t])]) {
             kept_index.push_back(t);
             kept.tets.push_back(mesh.tets[t]);
+            if (!density.empty()) kept_density.push_back(density[t]);
         } else {
             sliver_tets.push_back(t);
         }
     }
-    const Partition inner = partition(kept, build_topology(kept), pieces, seed);
+    const Partition inner = partition(kept, build_topology(kept), pieces, seed, kept_density);
     Partition out;
     out.tet_piece.assign(mesh.tets.size(), 0);
     for (size_t i = 0; i < kept_index.size(); ++i) out.tet_piece[kept_index[i]] = inner.tet_piece[i];

@@ -112,8 +112,8 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
 // of the largest cluster's; at most kMaxBodies of them); the tets of the others take the piece
 // of the nearest tet (centroid to centroid) of a large one. With adapt, `pieces` is raised to
 // the number of large clusters when it is smaller. When every cluster is large and there are at
-// most `pieces` of them, this is exactly partition().
+// most `pieces` of them, this is exactly partition(). `density`: graded pieces (partition.h), or empty.
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
-                            bool adapt, AutoChoices& choices);
+                            bool adapt, AutoChoices& choices, const std::vector<double>& density = {});
 
 }  // namespace shatter

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -54,8 +55,33 @@ std::vector<uint32_t> seeds_per_component(const std::vector<uint32_t>& sizes, ui
     return alloc;
 }
 
+// `count` distinct tets of `members`, each draw in proportion to `weight` among those left.
+void draw_weighted(const std::vector<uint32_t>& members, uint32_t count, const std::vector<double>& weight, Rng& rng,
+                   std::vector<uint32_t>& seeds) {
+    std::vector<double> w;
+    w.reserve(members.size());
+    for (uint32_t t : members) w.push_back(weight[t]);
+    for (uint32_t k = 0; k < count; ++k) {
+        double total = 0;
+        for (double x : w) total += x;
+        const double u = rng.uniform() * total;
+        size_t pick = SIZE_MAX;
+        double sum = 0;
+        for (size_t i = 0; i < w.size(); ++i) {
+            if (w[i] <= 0) continue;
+            pick = i;  // the last one left, should round-off carry u past the end
+            sum += w[i];
+            if (u < sum) break;
+        }
+        assert(pick != SIZE_MAX);
+        seeds.push_back(members[pick]);
+        w[pick] = 0;
+    }
+}
+
+// `weight` empty: uniform (partial Fisher-Yates); else without replacement in proportion to it.
 std::vector<uint32_t> draw_seeds(const std::vector<int32_t>& component, int32_t count, uint32_t pieces,
-                                 uint64_t seed) {
+                                 uint64_t seed, const std::vector<double>& weight) {
     std::vector<std::vector<uint32_t>> members(static_cast<size_t>(count));
     for (size_t t = 0; t < component.size(); ++t) members[size_t(component[t])].push_back(uint32_t(t));
     std::vector<uint32_t> sizes;
@@ -66,6 +92,10 @@ std::vector<uint32_t> draw_seeds(const std::vector<int32_t>& component, int32_t 
     std::vector<uint32_t> seeds;
     for (size_t c = 0; c < members.size(); ++c) {
         std::vector<uint32_t>& m = members[c];
+        if (!weight.empty()) {
+            draw_weighted(m, alloc[c], weight, rng, seeds);
+            continue;
+        }
         for (uint32_t k = 0; k < alloc[c]; ++k) {  // partial Fisher-Yates: k distinct tets
             const uint32_t j = k + rng.below(uint32_t(m.size()) - k);
             std::swap(m[k], m[j]);
@@ -101,16 +131,40 @@ bool grow_one(Grower& g, uint32_t p, const TetTopology& topology, std::vector<ui
     return false;
 }
 
+// The tet piece p would claim on its next turn (grow_one's), without claiming it; -1 when its
+// frontier is empty.
+int32_t peek_next(Grower& g, const TetTopology& topology, const std::vector<uint32_t>& tet_piece) {
+    while (g.head < g.queue.size()) {
+        const auto& nb = topology.neighbour[g.queue[g.head]];
+        while (g.face < 4) {
+            const int32_t u = nb[g.face];
+            if (u >= 0 && tet_piece[u] == kUnclaimed) return u;
+            ++g.face;
+        }
+        ++g.head;
+        g.face = 0;
+    }
+    return -1;
+}
+
 }  // namespace
 
-Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed) {
+Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
+                    const std::vector<double>& density) {
     assert(topology.neighbour.size() == mesh.tets.size());
+    assert(density.empty() || density.size() == mesh.tets.size());
     int32_t components = 0;
     const std::vector<int32_t> component = tet_components(topology, {}, &components);
     validate(mesh.tets.size(), pieces, components);
 
+    std::vector<double> weight;  // density x volume
+    for (size_t t = 0; t < density.size(); ++t) {
+        const Tet& k = mesh.tets[t];
+        weight.push_back(density[t] * tet_volume(mesh.vertices[k[0]], mesh.vertices[k[1]], mesh.vertices[k[2]],
+                                                 mesh.vertices[k[3]]));
+    }
     Partition result;
-    result.seeds = draw_seeds(component, components, pieces, seed);
+    result.seeds = draw_seeds(component, components, pieces, seed, weight);
     result.tet_piece.assign(mesh.tets.size(), kUnclaimed);
     std::vector<Grower> growers(pieces);
     std::vector<uint32_t> active;
@@ -119,12 +173,35 @@ Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t p
         growers[p].queue.push_back(result.seeds[p]);
         active.push_back(p);
     }
-    while (!active.empty()) {
-        size_t kept = 0;
-        for (uint32_t p : active) {
-            if (grow_one(growers[p], p, topology, result.tet_piece)) active[kept++] = p;
+    if (density.empty()) {
+        while (!active.empty()) {
+            size_t kept = 0;
+            for (uint32_t p : active) {
+                if (grow_one(growers[p], p, topology, result.tet_piece)) active[kept++] = p;
+            }
+            active.resize(kept);
         }
-        active.resize(kept);
+    } else {
+        // Each turn gives a piece one credit; a tet costs its density over the lowest.
+        double lowest = std::numeric_limits<double>::infinity();
+        for (double w : density) lowest = std::min(lowest, w);
+        std::vector<double> credit(pieces, 0.0);
+        while (!active.empty()) {
+            size_t kept = 0;
+            for (uint32_t p : active) {
+                const int32_t next = peek_next(growers[p], topology, result.tet_piece);
+                if (next < 0) continue;  // enclosed
+                credit[p] += 1;
+                const double cost = density[size_t(next)] / lowest;
+                if (credit[p] >= cost) {
+                    credit[p] -= cost;
+                    result.tet_piece[size_t(next)] = p;
+                    growers[p].queue.push_back(uint32_t(next));
+                }
+                active[kept++] = p;
+            }
+            active.resize(kept);
+        }
     }
     result.piece_tets.assign(pieces, 0);
     for (uint32_t p : result.tet_piece) {

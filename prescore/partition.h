@@ -13,6 +13,15 @@
 //   more seeds than a component has tets.
 // - Seeds are drawn with prescore's own Rng (rng.h), so the same seed gives the same pieces on
 //   every platform. Pieces are numbered in ascending order of their seed tet.
+//
+// Graded pieces (a `density` per tet, prescore/graded_seeds.h): small pieces where the density is
+// high. Within each component the seeds are drawn without replacement with probability
+// proportional to density x tet volume. Then every turn gives each piece one credit, and the
+// next tet of its breadth-first frontier costs its density over the lowest density: a piece takes
+// it when its credit covers the cost, else waits. So the pieces grow at equal rates of density
+// (not of tets), and a piece where the density is k times higher ends about k times smaller.
+// Denser seeds alone leave the near pieces only a little smaller (the round-robin gives every
+// piece the same growth in tets). Components get their seeds as in the uniform partition.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +41,9 @@ struct Partition {
 // Splits `mesh` (with its `topology`) into `pieces` pieces from random seeds drawn with `seed`.
 // Input Errors: pieces == 0, pieces > number of tets, pieces < number of face-connected
 // components.
-Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed);
+// With `density` (one positive value per tet) the pieces are graded as above; without it (empty)
+// this is the uniform partition, byte for byte.
+Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
+                    const std::vector<double>& density = {});
 
 }  // namespace shatter

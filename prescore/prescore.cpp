@@ -25,6 +25,7 @@
 #include "prescore/collision_parts.h"
 #include "prescore/constraint_reduction.h"
 #include "prescore/constraints.h"
+#include "prescore/graded_seeds.h"
 #include "prescore/hollow.h"
 #include "prescore/mass_properties.h"
 #include "prescore/partition.h"
@@ -120,7 +121,7 @@ TriangleMesh prepare_surface(TriangleMesh mesh, const MeshSettings& settings, Pr
 }
 
 std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& settings, uint64_t mesh_hash,
-                          const AutoChoices& choices) {
+                          const AutoChoices& choices, const nlohmann::ordered_json& impact) {
     // The mesh is named by its file name and content hash, not its path: the same inputs give
     // the same bytes wherever they live (caching, pinned hashes).
     nlohmann::ordered_json j;
@@ -130,6 +131,7 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     j["prescore"] = to_json(settings);
     if (!choices.list.empty()) j["auto"] = choices.to_json();  // what prescore chose, and why
     if (!choices.warnings.empty()) j["warnings"] = choices.warnings;  // and what it warned of
+    if (!impact.is_null()) j["impact"] = impact;  // seeds = "impact": where the object hits
     return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (names are as_utf8's)
 }
 
@@ -389,7 +391,8 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
     return in;
 }
 
-Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out) {
+Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out,
+               const FlightScene* flight) {
     PrescoreReport local;
     PrescoreReport& report = report_out ? *report_out : local;
     PhaseTimer timer(report);
@@ -448,7 +451,19 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         timer.lap("hollow");
     }
 
-    Partition part = partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt, choices);
+    std::vector<double> density;  // empty: uniform seeds
+    if (settings.seeds == SeedMode::Impact) {
+        SceneSettings none;
+        none.ground = false;
+        const ObjectSettings still;
+        GradedSeeds graded = grade_by_impact(model.mesh, topo, settings, flight ? flight->scene : none,
+                                             flight ? flight->object : still, report.input.diagonal, choices);
+        report.impact = graded.record();
+        density = std::move(graded.density);
+        timer.lap("impact");
+    }
+    Partition part = partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt, choices,
+                                       density);
     model.tet_piece = std::move(part.tet_piece);
     model.pieces.resize(part.piece_tets.size());
     timer.lap("partition");
@@ -474,7 +489,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         }
     }
     report.surface = std::move(fit.surface);
-    model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices);
+    model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices, report.impact);
     return model;
 }
 
@@ -484,7 +499,8 @@ Model prescore_shot(const Shot& shot, PrescoreReport* report_out) {
             throw_input_error(shot.path, "the shot has neither [mesh] nor [generate]",
                               "add [mesh] with path = \"your.obj\", or [generate] with kind = \"beam\", \"plate\" or "
                               "\"chain\" (docs/shot.md)");
-        return prescore(shot.mesh, shot.prescore, report_out);
+        const FlightScene flight{shot.scene, shot.object};
+        return prescore(shot.mesh, shot.prescore, report_out, &flight);
     }
     PrescoreReport local;
     PrescoreReport& report = report_out ? *report_out : local;

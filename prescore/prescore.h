@@ -15,7 +15,10 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/model.h"
+#include "core/scene_settings.h"
 #include "core/settings.h"
 #include "core/shot.h"
 #include "meshio/archive.h"
@@ -40,6 +43,7 @@ struct PrescoreReport {
     size_t render_surfaces = 0;      // pieces given a render surface (fell back ones included)
     size_t render_fell_back = 0;     // of those, pieces on their tet surface
     size_t render_triangles = 0;     // triangles of every render surface
+    nlohmann::ordered_json impact;   // seeds = "impact": the pre-pass's contacts and the grading (else null)
     std::vector<std::pair<std::string, double>> phase_seconds;  // in order
 };
 
@@ -57,13 +61,21 @@ struct InputMesh {
 };
 InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices);
 
+// The scene the object will fly in, for seeds = "impact" (prescore/impact.h).
+struct FlightScene {
+    const SceneSettings& scene;
+    const ObjectSettings& object;
+};
+
 // Runs every phase; throws Error for bad input (unreadable mesh, mesh that cannot be
-// tetrahedralized and may not be repaired, more pieces than tets, ...).
-Model prescore(const MeshSettings& mesh, const PrescoreSettings& settings, PrescoreReport* report);
+// tetrahedralized and may not be repaired, more pieces than tets, ...). seeds = "impact" needs
+// `flight`; without it the seeds are uniform.
+Model prescore(const MeshSettings& mesh, const PrescoreSettings& settings, PrescoreReport* report,
+               const FlightScene* flight = nullptr);
 
 // The shot's model: built from boxes when the shot has [generate] (scenes/paper_scenes.h; no
 // mesh, no tets, report->phase_seconds holds "generate"), else prescore(shot.mesh,
-// shot.prescore, report). Throws Error(BadInput) naming the shot when it has neither.
+// shot.prescore, report, the shot's scene and object). Throws Error(BadInput) naming the shot when it has neither.
 Model prescore_shot(const Shot& shot, PrescoreReport* report);
 
 // The stage's files: the model at `model_path` and, beside it, STEM.pieces.ply (the pieces as one

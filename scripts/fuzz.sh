@@ -19,8 +19,15 @@ if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=(mesh gltf archive shot batch model tr
 
 bash scripts/install-deps.sh > /dev/null
 bash scripts/install-deps.sh --fuzz > /dev/null
+# Through ccache where installed, as the main build (CMakeLists.txt): paths relative to the
+# source folder, so a second clone on the machine compiles from the cache.
+LAUNCHER=()
+if command -v ccache > /dev/null; then
+  LAUNCHER=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$(pwd)" CCACHE_NOHASHDIR=true
+fi
 if [ ! -f "$BUILD_DIR/build.ninja" ]; then
-  CC=clang CXX=clang++ cmake -S tests/fuzz -B "$BUILD_DIR" -G Ninja > "$BUILD_DIR.configure.log" 2>&1 \
+  CC=clang CXX=clang++ cmake -S tests/fuzz -B "$BUILD_DIR" -G Ninja "${LAUNCHER[@]}" > "$BUILD_DIR.configure.log" 2>&1 \
     || { cat "$BUILD_DIR.configure.log"; exit 1; }
 fi
 start=$(date +%s)

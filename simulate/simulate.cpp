@@ -75,39 +75,29 @@ struct Choices {
     }
 };
 
-// joints = "auto": the solve it took and why. Iterative joints kept for a large model are said
-// with the ratios where they start to fail, or warned past them.
+// joints = "auto": the solve it took. Iterative joints by name are warned where the mass ratios
+// pass those at which they start to fail.
 void explain_joints(const Model& model, const SimulationInput& in, bool direct, Choices& choices) {
-    if (in.simulate.joints != JointSolve::Auto || model.constraints.empty()) return;
-    if (direct) {
+    if (model.constraints.empty()) return;
+    if (in.simulate.joints == JointSolve::Auto) {
         choices.choose("[simulate] joints = \"direct\"",
-                       fmt::format("{} pieces: direct up to {}", model.pieces.size(), kAutoDirectPieces));
+                       fmt::format("{} pieces: every model's joints solved directly", model.pieces.size()));
         return;
     }
+    if (direct) return;
     uint32_t heavy = 0, light = 0, island_heavy = 0, island_light = 0;
     const double ratio = largest_joined_mass_ratio(model, &heavy, &light);
     const double island = largest_island_mass_ratio(model, &island_heavy, &island_light);
-    if (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio) {
-        choices.choose("[simulate] joints = \"iterative\"",
-                       fmt::format("{} pieces: iterative above {}, where direct joints cost 2 to 5 times as much; the "
-                                   "largest mass ratio between joined pieces is {:.3g}, piece {} over piece {} "
-                                   "(iterative joints hold up to {:g}); within an island of joined pieces {:.3g}, piece "
-                                   "{} over piece {} (up to {:g})",
-                                   model.pieces.size(), kAutoDirectPieces, ratio, heavy, light, kIterativeMassRatio,
-                                   island, island_heavy, island_light, kIterativeIslandRatio));
-    } else {
-        const bool joined = ratio > kIterativeMassRatio;
-        warn_and_keep(choices.warned,
-                      fmt::format("simulate: joints = \"auto\" keeps iterative joints for {} pieces (direct up to "
-                                  "{}), but piece {} is {:.3g} times as heavy as piece {} {}: iterative joints may "
-                                  "break or drift apart where they should hold from a mass ratio of {:g} "
-                                  "(docs/accuracy.md, \"The stability map\"). [simulate] joints = \"direct\" "
-                                  "holds them, at about 2 to 5 times the simulation's time at 100 to 1,000 pieces",
-                                  model.pieces.size(), kAutoDirectPieces, joined ? heavy : island_heavy,
-                                  joined ? ratio : island, joined ? light : island_light,
-                                  joined ? "joined to it" : "in its island of joined pieces",
-                                  joined ? kIterativeMassRatio : kIterativeIslandRatio));
-    }
+    if (ratio <= kIterativeMassRatio && island <= kIterativeIslandRatio) return;
+    const bool joined = ratio > kIterativeMassRatio;
+    warn_and_keep(choices.warned,
+                  fmt::format("simulate: joints = \"iterative\", but piece {} is {:.3g} times as heavy as piece {} {}: "
+                              "iterative joints may break or drift apart where they should hold from a mass ratio of "
+                              "{:g} (docs/accuracy.md, \"The stability map\"). [simulate] joints = \"direct\" (the "
+                              "default) holds them",
+                              joined ? heavy : island_heavy, joined ? ratio : island, joined ? light : island_light,
+                              joined ? "joined to it" : "in its island of joined pieces",
+                              joined ? kIterativeMassRatio : kIterativeIslandRatio));
 }
 
 // [material] stiffen: a stiffness too soft for the step (pieces smaller or heavier than the shot
@@ -362,6 +352,19 @@ void warn_at_end(Simulation& sim, const SimulationInput& in, double h, double st
                                               "joined pieces together when contacts push them; or more [simulate] "
                                               "iterations, now {}",
                                               in.simulate.iterations)));
+    // Iterative joints that broke holding more by their stretch than their forces stored: the
+    // books count the stored energy, and the rest left with the pieces unaccounted.
+    double stored = 0;
+    for (const BreakRecord& b : out.breaks) stored += b.kicks.stored_energy;
+    const double stretch = out.energy.empty() ? 0.0 : out.energy.back().removed;
+    if (!direct && stored > 0 && stretch > (1 + kIterativeStretchExcess) * stored)
+        warn_and_keep(out.warnings,
+             fmt::format("simulate: the {} joints that broke held {:.4g} J by their stretch, {:.3g} times the {:.4g} J "
+                         "their forces stored and the books count: iterative joints (joints = \"iterative\") left "
+                         "their forces short of their springs, and each break gave back alpha times its force's "
+                         "energy, not its spring's. [simulate] joints = \"direct\" (the default) keeps every joint's "
+                         "force to its stretch (docs/physics.md section 5b)",
+                         out.breaks.size(), stretch, stretch / stored, stored));
 }
 
 }  // namespace
@@ -400,10 +403,7 @@ double largest_island_mass_ratio(const Model& model, uint32_t* heavier, uint32_t
     return largest;
 }
 
-bool solves_joints_directly(const Model& model, const SimulateSettings& s) {
-    if (s.joints != JointSolve::Auto) return s.joints == JointSolve::Direct;
-    return model.pieces.size() <= kAutoDirectPieces;
-}
+bool solves_joints_directly(const Model&, const SimulateSettings& s) { return s.joints != JointSolve::Iterative; }
 
 uint32_t frame_count(const SimulateSettings& s) {
     return uint32_t(std::llround((s.auto_duration ? s.max_duration : s.duration) * s.fps)) + 1;

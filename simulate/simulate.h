@@ -175,11 +175,10 @@ double largest_joined_mass_ratio(const Model& model, uint32_t* heavier = nullptr
 // The largest mass ratio between two pieces of one island (pieces joined through constraints,
 // directly or through others), and which two.
 double largest_island_mass_ratio(const Model& model, uint32_t* heavier = nullptr, uint32_t* lighter = nullptr);
-// joints = "auto" solves the joints directly in a model of at most this many pieces: direct joints
-// cost about as much as iterative ones at 10 pieces, 2 to 3 times at 50 and 100, 3 to 7.5 times at
-// 1,000 (docs/physics.md section 5b), and only they keep every joint's force to its stretch through an
-// impact. A larger model keeps iterative joints, and is warned where they may fail:
-inline constexpr size_t kAutoDirectPieces = 100;
+// joints = "auto" (the default) solves every model's joints directly: only direct joints keep every
+// joint's force to its stretch through an impact, at any piece count, and so the energy a break
+// gives back to what its joint held (docs/physics.md section 5b). Iterative joints, by name, are
+// warned before the run where they may fail:
 // ... when the largest joined mass ratio is above this: the rig of the stability map (20
 // iterations) is stable with iterative joints up to a ratio of 10 and cascades from 12 on; direct
 // joints hold it up to 1,000 (docs/accuracy.md, "The stability map").
@@ -190,7 +189,10 @@ inline constexpr double kIterativeMassRatio = 10;   // (unit: 1)
 // stands at 10, where direct joints, which solve such contacts through the joints, hold it at
 // 1,000.
 inline constexpr double kIterativeIslandRatio = 30;  // (unit: 1)
-// Whether a run of `model` with these settings solves its joints directly ("auto" resolved).
+// ... and after the run when the joints that broke held more than this share above what their
+// forces stored (the books count the stored energy; the stretch's excess left with the pieces).
+inline constexpr double kIterativeStretchExcess = 0.1;  // (unit: 1)
+// Whether a run with these settings solves its joints directly ("auto" resolved: it does).
 bool solves_joints_directly(const Model& model, const SimulateSettings& s);
 
 // Where the frames go: frame count for duration and fps (frame 0 at t = 0 included). With

@@ -259,33 +259,31 @@ def case_units_and_frame_rate(a):
           f"the operator took {seconds:.1f} s")
 
 
-def case_refused_mesh(a):
-    obj = import_obj(os.path.join(a.source, "tests", "bad_inputs", "mesh-degenerate.obj"))
+def refusal(case, call, what):
+    """Runs the operator expecting it to refuse: its message, the scene left as it was."""
     state = scene_state()
     try:
-        bpy.ops.object.shatter(pieces=10)
+        call()
     except RuntimeError as e:
         message = str(e)
     else:
-        raise AssertionError("the operator ran on a mesh shatter refuses")
-    print(f"addon_test: refused_mesh: {message}")
-    assert "the mesh has no area" in message and "fix:" in message, message
+        raise AssertionError(f"the operator ran {what}")
+    print(f"addon_test: {case}: {message}")
     assert scene_state() == state, "the scene changed"
+    return message
+
+
+def case_refused_mesh(a):
+    obj = import_obj(os.path.join(a.source, "tests", "bad_inputs", "mesh-degenerate.obj"))
+    message = refusal("refused_mesh", lambda: bpy.ops.object.shatter(pieces=10), "on a mesh shatter refuses")
+    assert "the mesh has no area" in message and "fix:" in message, message
     assert not obj.hide_get()
 
 
 def case_no_binary(a):
     bpy.context.preferences.addons["shatter_blender"].preferences.shatter_binary = os.path.join(a.work, "no-such-shatter")
-    state = scene_state()
-    try:
-        bpy.ops.object.shatter()
-    except RuntimeError as e:
-        message = str(e)
-    else:
-        raise AssertionError("the operator ran without a shatter binary")
-    print(f"addon_test: no_binary: {message}")
+    message = refusal("no_binary", lambda: bpy.ops.object.shatter(), "without a shatter binary")
     assert "no-such-shatter" in message and "Preferences" in message, message
-    assert scene_state() == state, "the scene changed"
 
 
 def main():

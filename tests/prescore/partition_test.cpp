@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <numeric>
 #include <string>
 
 #include "core/error.h"
+#include "prescore/graded_seeds.h"
 #include "prescore/tet_test_meshes.h"
 
 namespace shatter {
@@ -126,6 +128,60 @@ TEST(Partition, DisconnectedComponentsGetSeedsInProportionToSize) {
     EXPECT_EQ(two.piece_tets, (std::vector<uint32_t>{384, 48}));
 
     const Partition nine = partition(mesh, topology, 9, 5);  // 9 * 384/432 = 8, 9 * 48/432 = 1
+    expect_valid(mesh, topology, nine, 9);
+    EXPECT_EQ(std::count_if(nine.seeds.begin(), nine.seeds.end(), [&](uint32_t s) { return s >= big; }), 1);
+}
+
+// The mean volume of the pieces whose centres lie within `within` of `contact`, over the rest's.
+double near_over_far(const TetMesh& mesh, const Partition& p, const Vec3& contact, double within) {
+    const size_t n = p.piece_tets.size();
+    std::vector<double> volume(n, 0.0);
+    std::vector<Vec3> moment(n, Vec3::Zero());
+    for (size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& k = mesh.tets[t];
+        const Vec3 a = mesh.vertices[k[0]], b = mesh.vertices[k[1]], c = mesh.vertices[k[2]], d = mesh.vertices[k[3]];
+        const double v = tet_volume(a, b, c, d);
+        volume[p.tet_piece[t]] += v;
+        moment[p.tet_piece[t]] += v * (a + b + c + d) / 4;
+    }
+    double near = 0, far = 0;
+    int near_count = 0, far_count = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if ((moment[i] / volume[i] - contact).norm() <= within) near += volume[i], ++near_count;
+        else far += volume[i], ++far_count;
+    }
+    EXPECT_GT(near_count, 0);
+    EXPECT_GT(far_count, 0);
+    return (near / near_count) / (far / far_count);
+}
+
+TEST(Partition, ImpactDensityMakesThePiecesNearTheContactSmallAndUniformSeedsDoNot) {
+    // A 30 x 15 x 15 cm brick in 12,000 tets, 40 pieces, hit at the middle of its bottom face.
+    const TetMesh mesh = test::cube_grid(20, 10, 10, 0.015);
+    const TetTopology topology = build_topology(mesh);
+    const Vec3 contact(0.15, 0, 0.075);
+    const double diagonal = Vec3(0.3, 0.15, 0.15).norm();
+    const std::vector<double> density = impact_density(mesh, {contact}, 20, 0.2 * diagonal);  // the demo's
+    const Partition graded = partition(mesh, topology, 40, 1, density);
+    expect_valid(mesh, topology, graded, 40);
+    const double graded_ratio = near_over_far(mesh, graded, contact, 0.3 * diagonal);
+    const double uniform_ratio = near_over_far(mesh, partition(mesh, topology, 40, 1), contact, 0.3 * diagonal);
+    EXPECT_LE(graded_ratio, 0.3);
+    EXPECT_GT(uniform_ratio, 0.6);
+    EXPECT_LT(uniform_ratio, 1.6);
+    std::printf("near / far mean volume: graded %.3f, uniform %.3f\n", graded_ratio, uniform_ratio);
+    // Same inputs, same pieces.
+    const Partition again = partition(mesh, topology, 40, 1, density);
+    EXPECT_EQ(again.tet_piece, graded.tet_piece);
+    EXPECT_EQ(again.seeds, graded.seeds);
+}
+
+TEST(Partition, ImpactDensityKeepsEachComponentsShareOfSeeds) {
+    TetMesh mesh = test::cube_grid(4, 4, 4, 1.0);  // 384 tets
+    const auto big = uint32_t(mesh.tets.size());
+    test::append(mesh, test::cube_grid(2, 2, 2, 1.0, Vec3(10, 0, 0)));  // 48 tets, far from the contact
+    const TetTopology topology = build_topology(mesh);
+    const Partition nine = partition(mesh, topology, 9, 5, impact_density(mesh, {Vec3(0, 0, 0)}, 100, 0.5));
     expect_valid(mesh, topology, nine, 9);
     EXPECT_EQ(std::count_if(nine.seeds.begin(), nine.seeds.end(), [&](uint32_t s) { return s >= big; }), 1);
 }

@@ -6,14 +6,18 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "core/material_presets.h"
 #include "scenes/box_model.h"
 #include "scenes/scene_support.h"
+#include "support/pinned_figures.h"
 
 namespace shatter {
 namespace {
 
 using namespace scenes_test;
+using testing_support::expect_pinned;
 
 TEST(AutoStep, TheFineStepIsThePowerOfTwoThatResolvesTheStiffestJointWithinMaxCfm) {
     const double block = kAutoBlock;  // 1/480 s
@@ -49,11 +53,10 @@ FixedAndAuto run_both(const Shot& shot, const Model& model, const Vec3& nudge, c
 
 // The plaster plate dropped on the sphere: the same breaks, the first within a frame, the same
 // fragments, over the shot's 1.5 s in a twentieth of its 45,000 steps or fewer, the probes undone
-// counted (measured: 1,261 to 1,393); every break from a fine step (shorter than the probe's
-// block). The cubes' kinetic energy 0.1 s after the first break is chaotic: the drop 0.1 um higher
-// or lower moves it by up to 30% at either step (the three drops here: 0.52, 0.66 and 0.62 J
-// automatic, 0.57, 0.57 and 0.55 J fixed). So the means over three such drops are compared,
-// within 20%.
+// counted (each drop's count is pinned: tests/pins/figures.tsv); every break from a fine step
+// (shorter than the probe's block). The cubes' kinetic energy 0.1 s after the first break is
+// chaotic: the drop 0.1 um higher or lower moves it by up to 30% at either step. So the means over
+// three such drops are compared, within 20% (both means pinned too).
 TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
     const Shot shot = asset("plate");
     const Model model = prescore_shot(shot, nullptr);
@@ -66,10 +69,14 @@ TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
         ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / 3;
         EXPECT_LE((a.steps + a.rejected_steps) * 20, f.steps)
             << a.steps << " + " << a.rejected_steps << " steps against " << f.steps;
+        expect_pinned(fmt::format("auto_step.plate.nudge{:g}um.steps", 1e6 * nudge),
+                      double(a.steps + a.rejected_steps));
         EXPECT_GT(a.rejected_steps, 0u);
         for (const BreakRecord& b : a.breaks) EXPECT_LT(b.step, kAutoBlock * 0.99) << "break at " << b.time;
     }
     EXPECT_NEAR(ke_auto, ke_fixed, 0.2 * ke_fixed);
+    expect_pinned("auto_step.plate.ke_after_break_auto", ke_auto, 1e-6);
+    expect_pinned("auto_step.plate.ke_after_break_fixed", ke_fixed, 1e-6);
 }
 
 // Two porcelain cubes of 2 cm joined face to face (four joints, each k = E A / l = 3.5e8 N/m and
@@ -113,9 +120,9 @@ TEST(AutoStep, ATurningPairRunsInTheStepsItsJointsStretchAllows) {
 // (1/480 s), so the automatic step saves only where a step spans two blocks: after the impact,
 // once the fragments' loads and motion are calm (each moving under a tenth of its size in the
 // step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
-// 960, undone probes counted (measured: 879 on average, 820 to 950), the same first break and
-// breaks, and the mean kinetic energy 0.1 s after the break within the study's 10% (measured 1.30
-// against 1.22 J).
+// 960, undone probes counted, the same first break and breaks, and the mean kinetic energy 0.1 s
+// after the break within the study's 10% (the mean steps and both energies pinned:
+// tests/pins/figures.tsv).
 TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
     const Shot shot = asset("bunny_sphere");
     const Model model = prescore_shot(shot, nullptr);
@@ -131,6 +138,9 @@ TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
     }
     EXPECT_LE(steps_auto, steps_fixed);
     EXPECT_NEAR(ke_auto, ke_fixed, 0.1 * ke_fixed);
+    expect_pinned("auto_step.bunny_sphere.mean_steps", steps_auto);
+    expect_pinned("auto_step.bunny_sphere.ke_after_break_auto", ke_auto, 1e-6);
+    expect_pinned("auto_step.bunny_sphere.ke_after_break_fixed", ke_fixed, 1e-6);
 }
 
 // The step's choices depend only on the state: two runs give the same poses and breaks.
@@ -158,8 +168,8 @@ TEST(AutoStep, TwoRunsGiveTheSamePosesAndBreaks) {
 // The porcelain chain pulled apart: eleven joints in series reach the strength when the ends have
 // moved 11 F / k apart; the converged answer is 0.3086 s (docs/physics.md section 5b). Over the
 // shot's 2 s, in a twentieth of its fixed step's 60,000 steps or fewer, the probes undone counted
-// (measured: 2,778 + 11): the slow pull is no impact (its links' velocities hardly change) and
-// runs in steps its springs' stretch allows until the force passes half the strength, in fine
+// (pinned: tests/pins/figures.tsv): the slow pull is no impact (its links' velocities hardly
+// change) and runs in steps its springs' stretch allows until the force passes half the strength, in fine
 // steps from there through the break.
 TEST(AutoStep, TheChainBreaksWhereElevenSpringsInSeriesReachTheirStrength) {
     const Shot shot = asset("chain");
@@ -170,6 +180,7 @@ TEST(AutoStep, TheChainBreaksWhereElevenSpringsInSeriesReachTheirStrength) {
     ASSERT_EQ(r.breaks.size(), 1u);
     const double fixed_steps = shot.simulate.duration * shot.simulate.fps * shot.simulate.substeps;
     EXPECT_LE(double(r.steps + r.rejected_steps) * 20, fixed_steps) << r.steps << " + " << r.rejected_steps;
+    expect_pinned("auto_step.chain.steps", double(r.steps + r.rejected_steps));
     const double area = model.constraints.front().area;
     const double k = shot.material.stiffness * area, f = shot.material.strength * area;
     const double t_break = 0.3 + double(model.constraints.size()) * f / k / (2 * 0.011);

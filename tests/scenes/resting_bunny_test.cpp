@@ -21,7 +21,10 @@ struct Rest {
 };
 
 Rest set_down(bool direct, double seconds) {
-    const Shot shot = asset("bunny");
+    Shot shot = asset("bunny");
+    // The pieces of about one size this test was measured with: the demo's impact seeds put small
+    // pieces at the base, where 7 joint-steps of the half second reach the strength (docs/log.md).
+    shot.prescore.seeds = SeedMode::Uniform;
     const Model model = prescore_shot(shot, nullptr);
     ObjectSettings object = shot.object;
     object.pose.position = Vec3::Zero();

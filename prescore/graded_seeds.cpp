@@ -1,0 +1,102 @@
+// The seed density of graded_seeds.h.
+#include "prescore/graded_seeds.h"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace shatter {
+
+std::vector<double> impact_density(const TetMesh& mesh, const std::vector<Vec3>& contacts, double ratio,
+                                   double radius) {
+    assert(!contacts.empty() && radius > 0 && ratio >= 1);
+    std::vector<double> w;
+    w.reserve(mesh.tets.size());
+    for (const Tet& k : mesh.tets) {
+        const Vec3 c = (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
+        double d2 = std::numeric_limits<double>::infinity();
+        for (const Vec3& p : contacts) d2 = std::min(d2, (c - p).squaredNorm());
+        w.push_back(1 + (ratio - 1) * std::exp(-d2 / (radius * radius)));
+    }
+    return w;
+}
+
+namespace {
+
+// The object's outer surface as the tets bound it (cavity faces too: they are inside).
+TriangleMesh boundary(const TetMesh& mesh, const TetTopology& topology) {
+    TriangleMesh out;
+    std::vector<uint32_t> index(mesh.vertices.size(), UINT32_MAX);
+    auto vertex = [&](uint32_t v) {
+        if (index[v] == UINT32_MAX) index[v] = uint32_t(out.vertices.size()), out.vertices.push_back(mesh.vertices[v]);
+        return index[v];
+    };
+    for (size_t t = 0; t < mesh.tets.size(); ++t)
+        for (int f = 0; f < 4; ++f)
+            if (topology.neighbour[t][f] < 0) {
+                const auto& k = kTetFaces[f];
+                out.triangles.push_back({vertex(mesh.tets[t][k[0]]), vertex(mesh.tets[t][k[1]]), vertex(mesh.tets[t][k[2]])});
+            }
+    return out;
+}
+
+nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+nlohmann::ordered_json GradedSeeds::record() const {
+    nlohmann::ordered_json j;
+    j["graded"] = !density.empty();
+    if (!density.empty()) {
+        j["ratio"] = ratio;
+        j["radius_m"] = radius;
+    }
+    j["contacts"] = nlohmann::ordered_json::array();
+    for (const Contact& c : impact.contacts) {
+        bool grades = false;
+        for (const Contact& g : grading) grades = grades || (g.with == c.with && g.time == c.time);
+        j["contacts"].push_back({{"with", c.with}, {"time_s", c.time}, {"point_m", vec(c.point)},
+                                 {"model_point_m", vec(c.model_point)}, {"normal", vec(c.normal)},
+                                 {"speed_m_per_s", c.speed}, {"normal_speed_m_per_s", c.normal_speed},
+                                 {"grades", grades}});
+    }
+    return j;
+}
+
+GradedSeeds grade_by_impact(const TetMesh& mesh, const TetTopology& topology, const PrescoreSettings& settings,
+                            const SceneSettings& scene, const ObjectSettings& object, double diagonal,
+                            AutoChoices& choices) {
+    GradedSeeds g;
+    g.impact = find_impact(boundary(mesh, topology), scene, object, kContactTolerance * diagonal);
+    g.grading = g.impact.grading();
+    if (g.impact.spin_ignored) spdlog::info("impact: the object's spin is left out of the pre-pass's flight");
+    if (g.impact.mesh_colliders_skipped > 0)
+        spdlog::info("impact: {} mesh collider(s) not looked at by the pre-pass", g.impact.mesh_colliders_skipped);
+    if (g.grading.empty()) {
+        choices.note("seeds uniform",
+                     g.impact.contacts.empty()
+                         ? fmt::format("seeds = \"impact\", but the object hits nothing within {:g} s of its flight", kImpactHorizon)
+                         : fmt::format("seeds = \"impact\", but the object's contacts close slower than {:g} m/s (it rests)",
+                                       kMinImpactSpeed));
+        return g;
+    }
+    g.ratio = settings.impact_ratio;
+    g.radius = settings.impact_radius.resolve(diagonal);
+    std::vector<Vec3> points;
+    for (const Contact& c : g.grading) points.push_back(c.model_point);
+    g.density = impact_density(mesh, points, g.ratio, g.radius);
+    const Contact& first = g.grading.front();
+    choices.note(fmt::format("seeds graded by the impact on the {} at ({:.3f}, {:.3f}, {:.3f}) m", first.with,
+                             first.point.x(), first.point.y(), first.point.z()),
+                 fmt::format("seeds = \"impact\": the object's rigid flight first touches the {} after {:.3f} s at "
+                             "{:.2f} m/s; seeds {:g} times denser there, falling off over {:.3g} m, and the pieces "
+                             "grow by density, not by tets{}",
+                             first.with, first.time, first.speed, g.ratio, g.radius,
+                             g.grading.size() > 1 ? fmt::format(" ({} contacts at once)", g.grading.size()) : ""));
+    return g;
+}
+
+}  // namespace shatter

@@ -1,0 +1,44 @@
+// `shatter run MESH` grades the pieces by the impact (the default shot's seeds = "impact"): a cube
+// dropped flat from 1.5 m lands on its bottom face at sqrt(2 g 1.5) = 5.42 m/s, and
+// the closing summary and summary.json say so.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "pipeline/run.h"
+#include "support/temp_dir.h"
+
+namespace shatter {
+namespace {
+
+using testing_support::TempDir;
+
+TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
+    TempDir dir;
+    RunOptions o;
+    o.shot = SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj";
+    o.output_dir = dir.file("out");
+    o.stages = {Stage::Prescore, Stage::Simulate};
+    o.progress = false;
+    const RunResult r = run_shot(o);
+    ASSERT_EQ(r.exit_code, 0);
+    const auto& impact = r.summary["model"]["impact"];
+    ASSERT_TRUE(impact["graded"].get<bool>()) << impact.dump();
+    const auto& first = impact["contacts"][0];
+    EXPECT_EQ(first["with"].get<std::string>(), "ground");
+    EXPECT_TRUE(first["grades"].get<bool>());
+    EXPECT_NEAR(first["speed_m_per_s"].get<double>(), std::sqrt(2 * 9.81 * 1.5), 1e-3);
+    // The mean of the bottom face's surface vertices: near its middle (Mesh_3 places them), on the ground.
+    EXPECT_NEAR(first["point_m"][0].get<double>(), 0, 0.03);
+    EXPECT_NEAR(first["point_m"][1].get<double>(), 0, 1e-9);
+    EXPECT_NEAR(first["point_m"][2].get<double>(), 0, 0.03);
+    const std::string closing = format_run_summary(r);
+    EXPECT_NE(closing.find("impact:   at ("), std::string::npos) << closing;
+    EXPECT_NE(closing.find(" m, speed 5.42 m/s, on the ground after 0.553 s; pieces graded: seeds 20 times denser there"),
+              std::string::npos)
+        << closing;
+}
+
+}  // namespace
+}  // namespace shatter
