@@ -537,9 +537,6 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
                                             look.material_colour[size_t(i)], 1e-6);
 }
 
-// A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each
-// piece exports its render surface, indexed, with its normals (the cube's outer faces: the axes),
-// one primitive per face kind, and the Khronos validator reports no errors.
 // scripts/crack_creases.py (docs/render.md, "Faired cracks") reads the crack faces back from a
 // .glb as prescore made them: the same inner edges, creases and crease length per area as
 // crack_creases() counts on the model's render surfaces (float positions in the file: within 1%).
@@ -573,6 +570,9 @@ TEST(GlbExport, TheCreaseScriptMeasuresTheCracksAsPrescoreDoes) {
     EXPECT_NEAR(got["density"].get<double>() / got["diagonal_m"].get<double>(), want.density, 0.01 * want.density);
 }
 
+// A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each
+// piece exports its render surface, indexed, with its normals (the cube's outer faces: the axes),
+// one primitive per face kind, and the Khronos validator reports no errors.
 TEST(GlbExport, RenderSurfacesExportIndexedWithTheirNormals) {
     TempDir dir;
     const Model m = load_model(SHATTER_SOURCE_DIR "/tests/fixtures/model-v2.model");
