@@ -190,7 +190,7 @@ TEST(CrackFairing, ThePiecesOfASphereMeetOnOneCrackWithinAMillionthOfTheDiagonal
     ::testing::Test::RecordProperty("worst_over_diagonal", std::to_string(worst / cut.diagonal));
 
     // Fewer creases than the tet facets had (how many fewer: docs/render.md, "Faired cracks";
-    // the bound of 5 is not reached on this coarse sphere, nor on the demo).
+    // a density of 5 is not reached on this coarse sphere, nor on the demo).
     const CrackCreases before = crack_creases(cut_sphere(false).surfaces, cut.diagonal);
     const CrackCreases after = crack_creases(cut.surfaces, cut.diagonal);
     EXPECT_LT(after.density, before.density);
