@@ -13,8 +13,8 @@
 //            sharper than `crease_degrees` stay sharp); the cell's faces inside the input are
 //            the piece's fracture and cavity faces, flat, with the cell face's kind;
 //   fallback a piece whose cell does not bound a volume, self-intersects, or whose cut fails
-//            or comes out empty keeps its cell, unpushed, as its surface (its tet surface with
-//            the faired cracks; flat normals); counted and logged;
+//            or comes out empty keeps its cell, unpushed, as its surface (its tet surface, flat
+//            normals; with faired cracks all pieces are made again from the tet faces first);
 //   input    when the surface cut is an alpha wrap of the input, the outer faces are then
 //            replaced by the input's own triangles (use_input_faces, below).
 //

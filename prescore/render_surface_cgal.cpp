@@ -476,6 +476,16 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         }
     }
     if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());
+    if (fell_back && faired) {
+        // All or none, as for open cells: a piece left on its cell is not the surface it stands
+        // for (and its outside may be replaced by the input's triangles), where the tet faces'
+        // cells may all cut.
+        spdlog::info("render surfaces: cracks not faired ({} of {} pieces not cut with faired cells), the tet faces "
+                     "between the pieces kept", fell_back, out.size());
+        RenderSurfaceSettings unfaired = settings;
+        unfaired.fair_cracks = false;
+        return render_surfaces(input, model, unfaired, retry);
+    }
     if (fell_back) spdlog::info("render surfaces: {} of {} pieces keep their tet surface", fell_back, out.size());
     return out;
 }
