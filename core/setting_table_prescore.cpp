@@ -189,6 +189,10 @@ SettingsSection prescore_section() {
                      "tet surface, flat)")
                  .json_unless_default()
                  .flag("--no-render-surface", FlagKind::SetsFalse),
+             boolean("crack_fairing", at(&Shot::prescore, &PrescoreSettings::crack_fairing),
+                     "render surfaces: the crack between two pieces drawn as one smooth surface (false: the zigzag of "
+                     "the tet faces between them)")
+                 .json_unless_default(),
              choice<SeedMode>("seeds", at(&Shot::prescore, &PrescoreSettings::seeds),
                               {{"uniform", SeedMode::Uniform}, {"impact", SeedMode::Impact}},
                               "where the seed tets go: uniform: anywhere, pieces of about one size; impact: denser "

@@ -78,6 +78,7 @@ struct PrescoreSettings {
     uint32_t collision_max_parts = 16;    // most convex parts per piece
     uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
+    bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go
     double impact_ratio = 10;             // impact seeds: density at the contact over far from it (unit: 1)
     Length impact_radius{0.25, true};     // impact seeds: fall-off radius of the density

@@ -22,12 +22,15 @@ ojson body_motion(const Trajectory& t, uint32_t body) {
         path += step;
         max_speed = std::max(max_speed, step * t.fps);
     }
-    ojson end = nullptr;
+    ojson end = nullptr, turn = nullptr;
     if (frames > 0) {
         const Eigen::Vector3f p = t.pose(frames - 1, body).position;
+        const Eigen::Quaternionf& q = t.pose(frames - 1, body).rotation;
         end = ojson::array({p.x(), p.y(), p.z()});
+        turn = ojson::array({q.x(), q.y(), q.z(), q.w()});
     }
-    return {{"piece", body}, {"path_length_m", path}, {"max_speed_m_s", max_speed}, {"final_position_m", end}};
+    return {{"piece", body},           {"path_length_m", path},      {"max_speed_m_s", max_speed},
+            {"final_position_m", end}, {"final_rotation_xyzw", turn}};
 }
 
 }  // namespace

@@ -30,6 +30,19 @@ nlohmann::ordered_json model_summary(const Model& m) {
         mass += p.mass.mass;
         volume += p.mass.volume;
         parts += p.collision.size();
+        // What is drawn (its render surface, when it has one): its volume and volume centroid.
+        json drawn_volume = nullptr, drawn_centre = nullptr;
+        if (p.render) {
+            double v = 0;
+            Vec3 c = Vec3::Zero();
+            for (const Tri& t : p.render->triangles) {
+                const Vec3 &a = p.render->vertices[t[0]], &b = p.render->vertices[t[1]], &d = p.render->vertices[t[2]];
+                const double six = a.dot(b.cross(d));
+                v += six / 6, c += six / 24 * (a + b + d);
+            }
+            drawn_volume = v;
+            if (v > 0) drawn_centre = {c.x() / v, c.y() / v, c.z() / v};
+        }
         pieces.push_back({{"piece", i},
                           {"tets", p.tets.size()},
                           {"volume_m3", p.mass.volume},
@@ -40,7 +53,9 @@ nlohmann::ordered_json model_summary(const Model& m) {
                           {"collision_parts", p.collision.size()},
                           {"collision_hull_volume_m3", hull},
                           {"components", components},
-                          {"connected", components == 1}});
+                          {"connected", components == 1},
+                          {"render_volume_m3", drawn_volume},
+                          {"render_center_m", drawn_centre}});
     }
     std::map<std::pair<uint32_t, uint32_t>, std::pair<size_t, double>> pairs;
     for (const Constraint& c : m.constraints) {

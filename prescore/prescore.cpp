@@ -164,9 +164,10 @@ void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::
 // kRenderSurfaceTriangles by meshoptimizer first; not when more than kInputFaceMostTriangles
 // remain, a choice noted), drawn from both sides unless `own_closed`, the fracture faces' rims
 // moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut surface's triangles
-// as its outer faces. One log line says what was done.
+// as its outer faces. `fair_cracks`: the cracks between pieces faired (crack_fairing.h). One log
+// line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
-                         bool own_closed, double rim_inset, PrescoreReport& report) {
+                         bool own_closed, double rim_inset, bool fair_cracks, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
     const std::optional<TriangleMesh> reduced = first_reduction(surface);
@@ -188,6 +189,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
     }
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
+    rs.fair_cracks = fair_cracks;
     const auto over_budget = [&](size_t triangles) {
         const double work = double(model.pieces.size()) * double(triangles);
         if (!(work > kRenderSurfaceWork)) return false;
@@ -476,7 +478,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         const bool own = fit.wrapped && !fit.thickened;
         add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, own ? &input : nullptr,
                             report.input.closed() && report.input.volume > 0,
-                            kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal, report);
+                            kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal,
+                            settings.crack_fairing, report);
         timer.lap("render surfaces");
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).

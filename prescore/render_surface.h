@@ -4,13 +4,17 @@
 //   cell     per piece, its tet boundary with every vertex on the object's outer boundary
 //            pushed outward by `margin` along that vertex's outer normal (area-weighted over the
 //            outer tet faces around it, the same for every piece that shares the vertex, so the
-//            cells still meet face to face and tile the pushed-out tet volume);
+//            cells still meet face to face and tile the pushed-out tet volume); with faired
+//            cracks (the default, crack_fairing.h) the cells are cut from the tets by a smoothed
+//            piece field instead, the same points placed from the same pushed vertices, so that
+//            neighbouring cells still share their crack faces exactly;
 //   cut      CGAL's corefine_and_compute_intersection(input, cell) (exact predicates): the
 //            input's faces inside the cell keep the input's vertices and smooth normals (creases
 //            sharper than `crease_degrees` stay sharp); the cell's faces inside the input are
 //            the piece's fracture and cavity faces, flat, with the cell face's kind;
 //   fallback a piece whose cell does not bound a volume, self-intersects, or whose cut fails
-//            or comes out empty keeps its tet surface (flat normals); counted and logged;
+//            or comes out empty keeps its cell, unpushed, as its surface (its tet surface, flat
+//            normals; with faired cracks all pieces are made again from the tet faces first);
 //   input    when the surface cut is an alpha wrap of the input, the outer faces are then
 //            replaced by the input's own triangles (use_input_faces, below).
 //
@@ -80,6 +84,7 @@ std::optional<TriangleMesh> first_reduction(const TriangleMesh& surface);
 struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
     double crease_degrees = 40;     // input edges with a dihedral angle above this stay sharp (unit: degrees)
+    bool fair_cracks = true;        // cells from the tet vertices with the cracks faired (crack_fairing.h)
 };
 
 // One render surface per model piece; `input` is the closed, outward surface the tets were

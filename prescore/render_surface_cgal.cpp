@@ -28,6 +28,7 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <spdlog/spdlog.h>
 
+#include "prescore/crack_fairing.h"
 #include "prescore/tet_topology.h"
 #include "prescore/triangle_tree_cgal.h"
 
@@ -68,14 +69,45 @@ std::vector<Cell> cells_of(const Model& model, const TetTopology& topo) {
     return cells;
 }
 
-// The outer normal of every mesh vertex (zero for vertices on no outer face).
-std::vector<Vec3> outer_normals(const Model& model, const std::vector<Cell>& cells) {
-    std::vector<Vec3> normal(model.mesh.vertices.size(), Vec3::Zero());
+// What each tet face on the boundary is (Outer or Cavity), from the tet cells' kinds.
+std::vector<std::array<FaceKind, 4>> boundary_kinds(const Model& model, const TetTopology& topo,
+                                                    const std::vector<Cell>& tet_cells) {
+    std::vector<std::array<FaceKind, 4>> kind(model.mesh.tets.size());
+    std::vector<size_t> emitted(model.pieces.size(), 0);  // in cells_of's order
+    for (size_t t = 0; t < model.mesh.tets.size(); ++t)
+        for (int i = 0; i < 4; ++i) {
+            const int32_t u = topo.neighbour[t][i];
+            if (u >= 0 && model.tet_piece[u] == model.tet_piece[t]) continue;
+            const uint32_t p = model.tet_piece[t];
+            kind[t][i] = tet_cells[p].kinds[emitted[p]++];
+        }
+    return kind;
+}
+
+// A cell at `at` as a piece surface (its tet surface, with the cracks faired when `at` is).
+PieceSurface cell_surface(const Cell& cell, const std::vector<Vec3>& at) {
+    PieceSurface s;
+    std::map<uint32_t, uint32_t> index;
+    for (const Tri& t : cell.triangles) {
+        Tri tri;
+        for (int k = 0; k < 3; ++k) {
+            auto [it, fresh] = index.emplace(t[k], uint32_t(s.vertices.size()));
+            if (fresh) s.vertices.push_back(at[t[k]]);
+            tri[k] = it->second;
+        }
+        s.triangles.push_back(tri);
+    }
+    s.kinds = cell.kinds;
+    return s;
+}
+
+// The outer normal of every mesh vertex at `v` (zero for vertices on no outer face).
+std::vector<Vec3> outer_normals(const std::vector<Vec3>& v, const std::vector<Cell>& cells) {
+    std::vector<Vec3> normal(v.size(), Vec3::Zero());
     for (const Cell& c : cells)
         for (size_t f = 0; f < c.triangles.size(); ++f) {
             if (c.kinds[f] != FaceKind::Outer) continue;
             const Tri& t = c.triangles[f];
-            const auto& v = model.mesh.vertices;
             const Vec3 n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
             for (uint32_t i : t) normal[i] += n;
         }
@@ -193,8 +225,8 @@ struct Input {
     TriangleTree tree;
 };
 
-std::vector<Vec3> pushed_vertices(const Model& model, const std::vector<Vec3>& normal, double margin) {
-    std::vector<Vec3> out = model.mesh.vertices;
+std::vector<Vec3> pushed_vertices(const std::vector<Vec3>& vertices, const std::vector<Vec3>& normal, double margin) {
+    std::vector<Vec3> out = vertices;
     for (size_t i = 0; i < out.size(); ++i) out[i] += margin * normal[i];
     return out;
 }
@@ -204,6 +236,8 @@ std::vector<Vec3> pushed_vertices(const Model& model, const std::vector<Vec3>& n
 RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const std::vector<Vec3>& pushed,
                       double eps) {
     RenderSurface rs;
+    std::vector<TreeTriangle> cell_faces;  // the cell's faces, for the nearest one (made when first asked)
+    TriangleTree cell_tree;
     std::map<std::tuple<size_t, double, double, double>, uint32_t> index;
     auto corner = [&](size_t v, const Vec3& p, const Vec3& n) {
         auto [it, fresh] = index.emplace(std::make_tuple(v, n.x(), n.y(), n.z()), uint32_t(rs.vertices.size()));
@@ -240,14 +274,14 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
             }
             rs.kinds.push_back(FaceKind::Outer);
         } else {
-            double best = std::numeric_limits<double>::infinity();
-            FaceKind kind = FaceKind::Fracture;
-            for (size_t c = 0; c < cell.triangles.size(); ++c) {
-                const Tri& ct = cell.triangles[c];
-                const TreeTriangle st(tree_point(pushed[ct[0]]), tree_point(pushed[ct[1]]), tree_point(pushed[ct[2]]));
-                const double d = CGAL::squared_distance(st, tree_point(centre));
-                if (d < best) best = d, kind = cell.kinds[c];
+            if (cell_faces.empty()) {
+                for (const Tri& ct : cell.triangles)
+                    cell_faces.emplace_back(tree_point(pushed[ct[0]]), tree_point(pushed[ct[1]]), tree_point(pushed[ct[2]]));
+                cell_tree.rebuild(cell_faces.cbegin(), cell_faces.cend());
+                cell_tree.accelerate_distance_queries();
             }
+            const auto nearest = cell_tree.closest_point_and_primitive(tree_point(centre));
+            const FaceKind kind = cell.kinds[size_t(nearest.second - cell_faces.cbegin())];
             Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
             n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 1, 0);
             for (int c = 0; c < 3; ++c) tri[c] = corner(vi[c], p[c], n);
@@ -354,7 +388,6 @@ Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
                                            const RenderSurfaceSettings& settings, const TriangleMesh* retry) {
     const TetTopology topo = build_topology(model.mesh);
-    const std::vector<Cell> cells = cells_of(model, topo);
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const double eps = 1e-7 * (hi - lo).norm();
@@ -362,16 +395,43 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     const bool input_ok = first.ok;
     std::optional<Cuttable> second;  // `retry`, made when first needed
 
+    // Faired cracks (crack_fairing.h): the cells cut from the tets by the smoothed piece field,
+    // their points placed from the tet vertices wherever those are (pushed out below), so that
+    // the two sides of a crack stay one surface. Otherwise the cells are the tet surfaces.
+    const std::vector<Cell> tet_cells = cells_of(model, topo);
+    std::vector<Cell> cells = tet_cells;
+    std::optional<CrackCells> faired;
+    const bool small = model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size();
+    if (settings.fair_cracks && small)
+        spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
+                     model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
+    if (settings.fair_cracks && !small) {
+        faired = crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, tet_cells));
+        spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} pieces "
+                      "held inside, {} cells open", faired->cut_tets, faired->points.size(), faired->degenerate,
+                      faired->held, faired->open);
+        if (faired->open > 0) {
+            // All or none: a piece on its tet faces beside a faired neighbour would gape.
+            spdlog::info("render surfaces: cracks not faired ({} of {} faired cells do not close), the tet faces "
+                         "between the pieces kept", faired->open, model.pieces.size());
+            faired.reset();
+        } else {
+            for (size_t p = 0; p < cells.size() && p < faired->triangles.size(); ++p)
+                cells[p] = Cell{faired->triangles[p], faired->kinds[p]};
+        }
+    }
+    const auto placed = [&](std::vector<Vec3> vertices) { return faired ? faired->place(vertices) : vertices; };
+
     // The largest margin of the ladder at which every cell is a valid closed surface (fewest
     // failures otherwise, the larger margin on a tie).
-    const std::vector<Vec3> normal = outer_normals(model, cells);
+    const std::vector<Vec3> normal = outer_normals(model.mesh.vertices, tet_cells);
     const double nudge = 1e-5 * (hi - lo).norm();
     std::vector<Vec3> pushed;
     std::vector<Mesh> cell(model.pieces.size());
     std::vector<const char*> why(model.pieces.size());
     size_t best_failures = SIZE_MAX;
     for (double factor : {1.0, 0.7, 0.5, 0.35}) {
-        std::vector<Vec3> try_pushed = pushed_vertices(model, normal, factor * settings.margin);
+        std::vector<Vec3> try_pushed = placed(pushed_vertices(model.mesh.vertices, normal, factor * settings.margin));
         std::vector<Mesh> try_cell(model.pieces.size());
         std::vector<const char*> try_why(model.pieces.size(), input_ok ? nullptr : "the input is not a closed polygon mesh");
         size_t failures = 0;
@@ -408,12 +468,24 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         if (!why[p]) {
             out.push_back(collect(cut, *in, cells[p], pushed, eps));
         } else {
+            // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
+            // neighbours' cracks still meet its own).
             spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
-            out.push_back(flat_render_surface(model.pieces[p].surface));
+            out.push_back(flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices))));
             ++fell_back;
         }
     }
     if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());
+    if (fell_back && faired) {
+        // All or none, as for open cells: a piece left on its cell is not the surface it stands
+        // for (and its outside may be replaced by the input's triangles), where the tet faces'
+        // cells may all cut.
+        spdlog::info("render surfaces: cracks not faired ({} of {} pieces not cut with faired cells), the tet faces "
+                     "between the pieces kept", fell_back, out.size());
+        RenderSurfaceSettings unfaired = settings;
+        unfaired.fair_cracks = false;
+        return render_surfaces(input, model, unfaired, retry);
+    }
     if (fell_back) spdlog::info("render surfaces: {} of {} pieces keep their tet surface", fell_back, out.size());
     return out;
 }

@@ -157,11 +157,23 @@ def shatter_bunny(scale, location, **options):
     return bunny, state, roots[0], pieces, seconds
 
 
+def placed(position, xyzw, point, centre):
+    """Where `point` of a piece (model frame) is when its centre of mass `centre` is at `position`,
+    turned by the unit quaternion `xyzw`: position + R (point - centre)."""
+    x, y, z, w = xyzw
+    v = [point[k] - centre[k] for k in range(3)]
+    # R v = v + 2 w (q x v) + 2 q x (q x v), q = (x, y, z)
+    c = (y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0])
+    cc = (y * c[2] - z * c[1], z * c[0] - x * c[2], x * c[1] - y * c[0])
+    return [position[k] + v[k] + 2 * w * c[k] + 2 * cc[k] for k in range(3)]
+
+
 def check_pieces(a, root, pieces):
     """The pieces against shatter's own files: a key per recorded frame from the scene's start
-    frame, and each piece's volume centroid within TOLERANCE_M of its centre of mass at the first
-    frame (the model's: its frame is the world's) and at the last (the trajectory's). Returns
-    (the trajectory's summary, the farthest distance at the first and at the last frame in m)."""
+    frame, and each piece's volume centroid within TOLERANCE_M of its drawn surface's (the model's
+    render_center_m: its frame is the world's) at the first frame and at the last (placed by the
+    trajectory's final pose). Returns (the trajectory's summary, the farthest distance at the
+    first and at the last frame in m)."""
     scene = bpy.context.scene
     folder = root["shatter_folder"]
     report = root["shatter_report"]
@@ -177,17 +189,21 @@ def check_pieces(a, root, pieces):
         (len(keys), keys[:2], keys[-2:], frames)
     assert scene.frame_end >= keys[-1]
 
-    # shatter's world: Y up, metres; Blender's: Z up, scene units.
+    # shatter's world: Y up, metres; Blender's: Z up, scene units. A piece is drawn with its render
+    # surface, whose volume centroid (render_center_m) lies off its tets' centre of mass: at the
+    # first frame where the model has it, at the last turned as the piece is (final_rotation_xyzw).
     unit = scene.unit_settings.scale_length
+    drawn = [p.get("render_center_m") or p["center_m"] for p in model["per_piece"]]
+    last = [placed(t["final_position_m"], t["final_rotation_xyzw"], d, p["center_m"])
+            for t, d, p in zip(traj["per_piece"], drawn, model["per_piece"])]
     worst = []
-    for when, frame, centres in (("first", keys[0], [p["center_m"] for p in model["per_piece"]]),
-                                 ("last", keys[-1], [p["final_position_m"] for p in traj["per_piece"]])):
+    for when, frame, centres in (("first", keys[0], drawn), ("last", keys[-1], last)):
         scene.frame_set(int(frame))
         worst.append(0.0)
         for o, (x, y, z), piece in zip(pieces, centres, model["per_piece"]):
             centroid, volume = volume_centroid(o)
             d = math.dist(centroid, (x / unit, -z / unit, y / unit)) * unit
-            ratio = volume * unit ** 3 / piece["volume_m3"]
+            ratio = volume * unit ** 3 / (piece.get("render_volume_m3") or piece["volume_m3"])
             print(f"addon_test: {when} frame {frame:g}: {o.name}: volume centroid {d * 1000:.3f} mm from the "
                   f"centre of mass; volume {ratio:.3f} x its tets'")
             worst[-1] = max(worst[-1], d)

@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/model_io.h"
@@ -33,6 +34,7 @@
 #include "core/scene_settings.h"
 #include "pipeline/export_glb.h"
 #include "pipeline/process.h"
+#include "prescore/crack_creases.h"
 #include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
@@ -41,6 +43,7 @@
 #include "support/duck.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
+#include "support/unit_cube.h"
 
 namespace shatter {
 namespace {
@@ -532,6 +535,39 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
     const RenderSettings look;  // render's defaults: a model without materials in material_colour
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(g.base_colour(g.scene->mMeshes[g.node("piece_999")->mMeshes[0]])[i],
                                             look.material_colour[size_t(i)], 1e-6);
+}
+
+// scripts/crack_creases.py (docs/render.md, "Faired cracks") reads the crack faces back from a
+// .glb as prescore made them: the same inner edges, creases and crease length per area as
+// crack_creases() counts on the model's render surfaces (float positions in the file: within 1%).
+TEST(GlbExport, TheCreaseScriptMeasuresTheCracksAsPrescoreDoes) {
+    TempDir dir;
+    // A cube in 4 pieces, its cracks the tet faces (creased).
+    std::string cube;
+    for (const auto& c : kCorners) cube += fmt::format("v {} {} {}\n", c[0], c[1], c[2]);
+    for (const auto& f : kFaces) cube += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    MeshSettings mesh;
+    mesh.path = dir.write("cube.obj", cube);
+    mesh.scale = 0.1;
+    PrescoreSettings settings;
+    settings.pieces = 4;
+    settings.resolution = 10;
+    settings.crack_fairing = false;
+    PrescoreReport report;
+    const Model m = prescore(mesh, settings, &report);
+    export_glb(m, test_trajectory(m, kFrames, false), dir.file("r.glb"));
+    const auto r = run_command({"/usr/bin/python3", SHATTER_SOURCE_DIR "/scripts/crack_creases.py", "--json", dir.file("r.glb")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json got = nlohmann::json::parse(r.out);
+    std::vector<RenderSurface> surfaces;
+    for (const Piece& p : m.pieces) surfaces.push_back(*p.render);
+    const CrackCreases want = crack_creases(surfaces, 1.0);
+    ASSERT_GT(want.inner_edges, 10u);
+    ASSERT_GT(want.creases, 0u);
+    EXPECT_EQ(got["inner_edges"].get<size_t>(), want.inner_edges);
+    EXPECT_EQ(got["creases"].get<size_t>(), want.creases);
+    EXPECT_NEAR(got["crack_area_m2"].get<double>(), want.area, 0.01 * want.area);
+    EXPECT_NEAR(got["density"].get<double>() / got["diagonal_m"].get<double>(), want.density, 0.01 * want.density);
 }
 
 // A model with render surfaces (tests/fixtures/model-v2.model: a 10 cm cube in 2 pieces): each
