@@ -5,7 +5,8 @@
 // Arguments (optional): a scene name to run only that scene (bunny, bunny1000, plate10, plate32,
 // plate100),
 // then the solver iterations for the plates (default 20, as shipped), then the alphas to run (default "01"),
-// then the joint solve ("auto", as shipped, "iterative" or "direct"; [simulate] joints), then what the kicks
+// then the joint solve ("auto", as shipped, "iterative" or "direct"; [simulate] joints; when not
+// given, bunny1000, plate32 and plate100 run with iterative joints too, beside), then what the kicks
 // move ("pieces" or "joined"; [simulate] kick_bodies; default as shipped), then the fall ("rigid": rigid
 // flight, as shipped, or "solved": every joint solved in every step of it; [simulate] rigid_flight), then
 // whether pieces at rest sleep ("sleep", as shipped, or "awake"; [simulate] sleep).
@@ -29,13 +30,17 @@ namespace {
 
 uint32_t g_iterations = 20;                    // the shipped default ([simulate] iterations)
 JointSolve g_joints = JointSolve::Auto;  // the shipped default ([simulate] joints)
+// No joint solve named: the goal scenes (bunny1000, plate32, plate100) run with the shipped
+// joints and, after each, with iterative ones, side by side in one run.
+bool g_beside_iterative = true;
 KickBodiesMode g_kick_bodies = SimulateSettings{}.kick_bodies;  // the shipped default ([simulate] kick_bodies)
 bool g_rigid_flight = SimulateSettings{}.rigid_flight;           // the shipped default ([simulate] rigid_flight)
 bool g_sleep = SimulateSettings{}.sleep;                         // the shipped default ([simulate] sleep)
 
-void run(const char* name, const Model& model, SimulationInput in, double alpha) {
+void run(const char* name, const Model& model, SimulationInput in, double alpha,
+         JointSolve joints = g_joints) {
     in.material.alpha = alpha;
-    in.simulate.joints = g_joints;
+    in.simulate.joints = joints;
     in.simulate.kick_bodies = g_kick_bodies;
     in.simulate.rigid_flight = g_rigid_flight;
     in.simulate.sleep = g_sleep;
@@ -52,8 +57,11 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha)
         const auto* bytes = reinterpret_cast<const unsigned char*>(f);
         for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
     }
-    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u,%.1f\n", name,
-                solves_joints_directly(model, in.simulate) ? "+direct" : "", model.pieces.size(),
+    const char* solve = solves_joints_directly(model, in.simulate) ? "+direct"
+                        : in.simulate.joints == JointSolve::Iterative ? "+iterative"
+                                                                       : "";
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u,%.1f\n", name, solve,
+                model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
                 double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
@@ -88,6 +96,7 @@ int main(int argc, char** argv) {
     const std::string only = argc > 1 ? argv[1] : "";
     if (argc > 2) g_iterations = uint32_t(std::stoul(argv[2]));
     const std::string alphas = argc > 3 ? argv[3] : "01";
+    if (argc > 4) g_beside_iterative = false;
     if (argc > 4)
         g_joints = std::string(argv[4]) == "direct"      ? JointSolve::Direct
                    : std::string(argv[4]) == "iterative" ? JointSolve::Iterative
@@ -135,7 +144,10 @@ int main(int argc, char** argv) {
     drop.material.surface = SurfaceSettings{0.6, 0.1};
     drop.simulate.duration = 1.5;
     drop.simulate.substeps = 16;
-    for (char a : alphas) run("bunny1000", bunny, drop, a - '0');
+    for (char a : alphas) {
+        run("bunny1000", bunny, drop, a - '0');
+        if (g_beside_iterative) run("bunny1000", bunny, drop, a - '0', JointSolve::Iterative);
+    }
     }
 
     // Plates of n x n cubes of 2 cm, joined by 4 constraints per shared face.
@@ -144,7 +156,10 @@ int main(int argc, char** argv) {
         if (!wanted(name)) continue;
         const Model plate = box_grid(n, 1, n, 0.02, Vec3(-0.01 * n, 0, -0.01 * n), 2400, 2);
         const double duration = n <= 32 ? 1.0 : 0.25;
-        for (char a : alphas) run(name.c_str(), plate, plate_drop(duration, n), a - '0');
+        for (char a : alphas) {
+            run(name.c_str(), plate, plate_drop(duration, n), a - '0');
+            if (g_beside_iterative && n >= 32) run(name.c_str(), plate, plate_drop(duration, n), a - '0', JointSolve::Iterative);
+        }
     }
     return 0;
 }
