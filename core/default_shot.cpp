@@ -35,7 +35,7 @@ stiffen = true
 [simulate]
 duration = "auto"
 fps = 30
-substeps = 16
+substeps = "auto"
 iterations = 20
 joints = "direct"
 

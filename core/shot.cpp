@@ -117,13 +117,7 @@ Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::
     root.insert_or_assign("mesh", toml::table{});
     Shot shot = read_shot(root, "", overrides);
     if (shot.mesh.path.empty()) shot.mesh.path = mesh_path;
-    const auto overridden = [&overrides](const char* key) {
-        return std::any_of(overrides.begin(), overrides.end(),
-                           [key](const std::string& o) { return o.rfind(key, 0) == 0; });
-    };
-    // The default shot's own step (16 substeps) is for its soft default material.
-    if (!overridden("simulate.substeps=") && !overridden("simulate.joints=")) step_for_stiff_material(shot);
-    return shot;
+    return shot;  // its step is automatic and its joints direct already, whatever the material
 }
 
 Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides) {

@@ -56,11 +56,11 @@ bool is_shot_path(const std::string& path);
 extern const char* const kDefaultShot;
 
 // The default shot on `mesh_path` (taken relative to the current folder), with `overrides`
-// applied as load_shot applies them. A real material (Young's modulus of at least
-// kStiffMaterialModulus, by a preset or the key) gets the automatic step and direct joints
-// (substeps = "auto", joints = "direct") unless the overrides set either: its joints are too stiff
-// for the default step to resolve an impact (docs/shot.md, "Material presets"). So does a shot
-// file's real material when neither the file nor the overrides set either key.
+// applied as load_shot applies them. Its step is automatic (substeps = "auto") and its joints
+// direct, whatever the material (docs/shot.md, "The default shot"). A shot file's real material
+// (Young's modulus of at least kStiffMaterialModulus, by a preset or the key) gets the same when
+// neither the file nor the overrides set `substeps` or `joints`: its joints are too stiff for a
+// fixed step to resolve an impact (docs/shot.md, "Material presets").
 Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides = {});
 inline constexpr double kStiffMaterialModulus = 1e9;  // (unit: Pa)
 

@@ -29,8 +29,8 @@ Rest set_down(bool direct, double seconds) {
     ObjectSettings object = shot.object;
     object.pose.position = Vec3::Zero();
     object.place = Placement::Base;
-    WorldSetup setup{shot.scene, object, shot.material, 1.0 / (shot.simulate.fps * shot.simulate.substeps),
-                     shot.simulate.iterations};
+    // One block of the automatic step (the shot's), the step its loaded joints run at.
+    WorldSetup setup{shot.scene, object, shot.material, kAutoBlock, shot.simulate.iterations};
     setup.direct_joints = direct;
     BulletWorld world(model, setup);
     auto centre = [&] {
