@@ -349,13 +349,11 @@ private:
                 r.outcome = StageOutcome::UpToDate;
             } else {
                 stamps_.remove(name);
-                r.outcome = step.kind == StageKind::Shared ? compute_shared(step, key) : compute_local(step, key);
+                r.outcome = step.kind == StageKind::Shared ? compute_shared(step, key) : compute_local(step, key, step.compute);
             }
         } catch (const Error& e) {
             if (!finishing) throw;
-            r.outcome = StageOutcome::Failed;
-            r.error = e.what();
-            spdlog::error("{}: {}", name, e.what());
+            failed(r, e.what());
             if (result_.exit_code == 0) result_.exit_code = static_cast<int>(e.code());
         }
         r.seconds = seconds_since(start);
@@ -363,6 +361,12 @@ private:
         if (step.after) step.after();
     }
     const StageStep& step_of(Stage s) const { return steps_.at(size_t(s)); }
+    // A finishing stage's failure, kept in its report and logged: the run goes on.
+    static void failed(StageReport& r, const char* what) {
+        r.outcome = StageOutcome::Failed;
+        r.error = what;
+        spdlog::error("{}: {}", to_string(r.stage), what);
+    }
     // Shared stages: another worker may be computing the same key (the cache's lock), or have
     // computed it (fetched from the cache).
     StageOutcome compute_shared(const StageStep& step, const std::string& key) {
@@ -381,9 +385,9 @@ private:
         return StageOutcome::Ran;
     }
     // Render (stamped once every frame is there: a chunk of a cluster job draws only its own)
-    // and the finishing stages.
-    StageOutcome compute_local(const StageStep& step, const std::string& key) {
-        step.compute();
+    // and the finishing stages, by `compute` (theirs, or the one beside render).
+    StageOutcome compute_local(const StageStep& step, const std::string& key, const std::function<void()>& compute) {
+        compute();
         if (step.kind != StageKind::Frames) stamps_.write(to_string(step.stage), key, output_names(step));
         else if (all_frames_present()) stamps_.write(to_string(step.stage), key, {});
         return StageOutcome::Ran;
@@ -544,19 +548,14 @@ private:
                 out.report.outcome = StageOutcome::UpToDate;
             } else {
                 stamps_.remove(name);
-                (step.compute_beside ? step.compute_beside : step.compute)();
-                stamps_.write(name, key, output_names(step));
+                out.report.outcome = compute_local(step, key, step.compute_beside ? step.compute_beside : step.compute);
             }
         } catch (const Error& e) {
-            out.report.outcome = StageOutcome::Failed;
-            out.report.error = e.what();
+            failed(out.report, e.what());
             out.exit_code = static_cast<int>(e.code());
-            spdlog::error("{}: {}", name, e.what());
         } catch (const std::exception& e) {  // (a thread must not end by an exception)
-            out.report.outcome = StageOutcome::Failed;
-            out.report.error = e.what();
+            failed(out.report, e.what());
             out.exit_code = static_cast<int>(ExitCode::Internal);
-            spdlog::error("{}: {}", name, e.what());
         }
         out.report.seconds = seconds_since(start);
         return out;
