@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "meshio/mesh_load.h"
 #include "prescore/crack_creases.h"
@@ -131,13 +130,8 @@ struct Cut {
 // An icosphere of 5,120 triangles, 10 cm across, in 6 pieces at resolution 12, by prescore.
 Cut cut_sphere(bool fair) {
     testing_support::TempDir dir;
-    const TriangleMesh sphere = test::icosphere(4);
-    std::ostringstream obj;
-    obj.precision(17);
-    for (const Vec3& v : sphere.vertices) obj << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-    for (const Tri& t : sphere.triangles) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
     MeshSettings mesh;
-    mesh.path = dir.write("sphere.obj", obj.str());
+    mesh.path = dir.write("sphere.obj", test::obj_text(test::icosphere(4)));
     mesh.scale = 0.1;
     PrescoreSettings settings;
     settings.pieces = 6;

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
@@ -17,45 +16,13 @@
 #include "prescore/prescore.h"
 #include "prescore/render_surface.h"
 #include "prescore/surface_agreement.h"
+#include "prescore/tet_test_meshes.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
 namespace {
 
-// An icosphere of radius 1: the icosahedron, each triangle split in four `levels` times.
-TriangleMesh icosphere(int levels) {
-    const double t = (1 + std::sqrt(5.0)) / 2;
-    TriangleMesh m;
-    m.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    for (Vec3& v : m.vertices) v.normalize();
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
-        auto middle = [&](uint32_t a, uint32_t b) {
-            auto [it, fresh] = mid.emplace(std::minmax(a, b), uint32_t(m.vertices.size()));
-            if (fresh) m.vertices.push_back((m.vertices[a] + m.vertices[b]).normalized());
-            return it->second;
-        };
-        std::vector<Tri> next;
-        for (const Tri& f : m.triangles) {
-            const uint32_t ab = middle(f[0], f[1]), bc = middle(f[1], f[2]), ca = middle(f[2], f[0]);
-            next.insert(next.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
-        }
-        m.triangles = std::move(next);
-    }
-    return m;
-}
-
-std::string obj(const TriangleMesh& m) {
-    std::ostringstream out;
-    out.precision(17);
-    for (const Vec3& v : m.vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-    for (const Tri& t : m.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-    return out.str();
-}
+using test::icosphere;
 
 // Closed: every edge (by vertex positions, since vertices are split where normals differ) is
 // used once in each direction.
@@ -81,7 +48,7 @@ struct Cut {
 
 Cut cut_sphere(const testing_support::TempDir& dir, std::optional<Length> hollow) {
     MeshSettings mesh;
-    mesh.path = dir.write("sphere.obj", obj(icosphere(4)));
+    mesh.path = dir.write("sphere.obj", test::obj_text(icosphere(4)));
     mesh.scale = 0.1;
     PrescoreSettings settings;
     settings.pieces = 6;
@@ -146,7 +113,7 @@ TEST(RenderSurface, HollowSphereKeepsItsCavityFacesAndFollowsTheInput) {
 Model prescore_sphere(const testing_support::TempDir& dir, int levels, uint32_t pieces, double resolution,
                       bool render_surface, PrescoreReport* report) {
     MeshSettings mesh;
-    mesh.path = dir.write("sphere.obj", obj(icosphere(levels)));
+    mesh.path = dir.write("sphere.obj", test::obj_text(icosphere(levels)));
     mesh.scale = 0.1;
     PrescoreSettings settings;
     settings.pieces = pieces;
@@ -319,7 +286,7 @@ struct Wrapped {
 
 Wrapped prescore_wrapped(const testing_support::TempDir& dir, const std::string& name, const TriangleMesh& input) {
     MeshSettings mesh;
-    mesh.path = dir.write(name, obj(input));
+    mesh.path = dir.write(name, test::obj_text(input));
     mesh.scale = 1;
     PrescoreSettings settings;
     settings.pieces = 6;

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include "core/geometry.h"
@@ -106,6 +108,15 @@ inline TriangleMesh icosphere(int levels) {
         m.triangles = std::move(next);
     }
     return m;
+}
+
+// The mesh as OBJ text (17 digits: the file reads back the same doubles).
+inline std::string obj_text(const TriangleMesh& m) {
+    std::ostringstream out;
+    out.precision(17);
+    for (const Vec3& v : m.vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (const Tri& t : m.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    return out.str();
 }
 
 // Spherical shell between radii r_in and r_out (centred at `centre`), `layers` radial layers.
