@@ -6,6 +6,7 @@
 // the cell and takes the kind of the nearest cell face (flat).
 #include "prescore/render_surface.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,6 +29,7 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <spdlog/spdlog.h>
 
+#include "core/workers.h"
 #include "prescore/crack_fairing.h"
 #include "prescore/tet_topology.h"
 #include "prescore/triangle_tree_cgal.h"
@@ -296,10 +298,13 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
 
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles) {
     if (surface.triangles.size() <= max_triangles) return surface;
+    // The collapses down to kRenderSurfaceQuickFactor x max_triangles are meshoptimizer's (fast;
+    // it keeps input vertices where CGAL's places new ones, so it stops short of the count).
+    const TriangleMesh quick = reduce_surface(surface, kRenderSurfaceQuickFactor * max_triangles);
     std::vector<Point> points;
-    for (const Vec3& v : surface.vertices) points.emplace_back(v.x(), v.y(), v.z());
+    for (const Vec3& v : quick.vertices) points.emplace_back(v.x(), v.y(), v.z());
     Soup soup;
-    for (const Tri& t : surface.triangles) soup.push_back({t[0], t[1], t[2]});
+    for (const Tri& t : quick.triangles) soup.push_back({t[0], t[1], t[2]});
     Mesh mesh;
     if (!soup_to_mesh(points, soup, mesh)) {
         // Sheets that touch along an edge or at a vertex (as a first reduction can leave them)
@@ -388,6 +393,7 @@ Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
                                            const RenderSurfaceSettings& settings, const TriangleMesh* retry) {
     const TetTopology topo = build_topology(model.mesh);
+    Workers workers(default_threads());  // the pieces' cells and cuts are independent of each other
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const double eps = 1e-7 * (hi - lo).norm();
@@ -434,11 +440,10 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         std::vector<Vec3> try_pushed = placed(pushed_vertices(model.mesh.vertices, normal, factor * settings.margin));
         std::vector<Mesh> try_cell(model.pieces.size());
         std::vector<const char*> try_why(model.pieces.size(), input_ok ? nullptr : "the input is not a closed polygon mesh");
-        size_t failures = 0;
-        for (size_t p = 0; p < model.pieces.size(); ++p) {
+        workers.run(model.pieces.size(), 1, [&](size_t p) {
             if (!try_why[p]) try_cell[p] = cell_mesh(cells[p], try_pushed, nudge, &try_why[p]);
-            failures += try_why[p] != nullptr;
-        }
+        });
+        const size_t failures = size_t(std::count_if(try_why.begin(), try_why.end(), [](const char* w) { return w; }));
         if (failures < best_failures) {
             best_failures = failures;
             pushed = std::move(try_pushed), cell = std::move(try_cell), why = std::move(try_why);
@@ -447,12 +452,15 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         if (failures == 0 || !input_ok) break;
     }
 
-    std::vector<RenderSurface> out;
-    size_t fell_back = 0, retried = 0;
+    // Each piece's cut on its own (on every core), then the rare second cuts one by one (they
+    // share the full surface, made when first needed), then the results collected.
+    std::vector<Mesh> cut(model.pieces.size());
+    std::vector<const Input*> in(model.pieces.size(), first.in.get());
+    workers.run(model.pieces.size(), 1, [&](size_t p) {
+        if (!why[p]) cut[p] = cut_cell(first.whole, cell[p], &why[p]);
+    });
+    size_t retried = 0;
     for (size_t p = 0; p < model.pieces.size(); ++p) {
-        Mesh cut;
-        const Input* in = first.in.get();
-        if (!why[p]) cut = cut_cell(first.whole, cell[p], &why[p]);
         if (why[p] && retry && input_ok && std::string_view(why[p]) != "its cell is not a closed surface" &&
             std::string_view(why[p]) != "its cell self-intersects") {
             // The cut failed on `input` (a simplified surface can cross itself where the cell
@@ -460,20 +468,24 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
             if (!second) second = cuttable(*retry, settings.crease_degrees);
             spdlog::debug("render surface of piece {}: {} on the simplified surface; cut again from the full one", p, why[p]);
             why[p] = nullptr;
-            if (second->ok) cut = cut_cell(second->whole, cell[p], &why[p]);
+            if (second->ok) cut[p] = cut_cell(second->whole, cell[p], &why[p]);
             else why[p] = "the full surface is not a closed polygon mesh";
-            in = second->in.get();
+            in[p] = second->in.get();
             ++retried;
         }
-        if (!why[p]) {
-            out.push_back(collect(cut, *in, cells[p], pushed, eps));
-        } else {
-            // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
-            // neighbours' cracks still meet its own).
-            spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
-            out.push_back(flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices))));
-            ++fell_back;
-        }
+    }
+    std::vector<RenderSurface> out(model.pieces.size());
+    workers.run(model.pieces.size(), 1, [&](size_t p) {
+        if (!why[p]) out[p] = collect(cut[p], *in[p], cells[p], pushed, eps);
+    });
+    size_t fell_back = 0;
+    for (size_t p = 0; p < model.pieces.size(); ++p) {
+        if (!why[p]) continue;
+        // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
+        // neighbours' cracks still meet its own).
+        spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
+        out[p] = flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices)));
+        ++fell_back;
     }
     if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());
     if (fell_back && faired) {
