@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -138,24 +139,30 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (names are as_utf8's)
 }
 
-void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity,
-                  const PrescoreSettings& settings, double diagonal) {
+// Each piece's tets, surface and whether it is connected: what the render surfaces need.
+void build_piece_shapes(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity) {
     const uint32_t n = static_cast<uint32_t>(model.pieces.size());
     for (uint32_t t = 0; t < model.tet_piece.size(); ++t) model.pieces[model.tet_piece[t]].tets.push_back(t);
-    CollisionSettings cs;
-    cs.max_gap = settings.collision_tolerance.resolve(diagonal);
-    cs.max_parts = settings.collision_max_parts;
-    Progress progress("pieces", n);
     for (uint32_t p = 0; p < n; ++p) {
         Piece& piece = model.pieces[p];
         piece.surface = piece_surface(model.mesh, topo, model.tet_piece, p, cavity);
-        piece.mass = mass_properties(model.mesh, piece.tets, settings.density);
-        piece.collision = collision_parts(model.mesh, piece.tets, cs);
         std::vector<char> mask(model.mesh.tets.size(), 0);
         for (uint32_t t : piece.tets) mask[t] = 1;
         int32_t components = 0;
         tet_components(topo, mask, &components);
         piece.connected = components == 1;
+    }
+}
+
+// Each piece's mass and collision parts (after build_piece_shapes).
+void build_piece_bodies(Model& model, const PrescoreSettings& settings, double diagonal) {
+    CollisionSettings cs;
+    cs.max_gap = settings.collision_tolerance.resolve(diagonal);
+    cs.max_parts = settings.collision_max_parts;
+    Progress progress("pieces", model.pieces.size());
+    for (Piece& piece : model.pieces) {
+        piece.mass = mass_properties(model.mesh, piece.tets, settings.density);
+        piece.collision = collision_parts(model.mesh, piece.tets, cs);
         progress.advance();
     }
 }
@@ -223,10 +230,11 @@ SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : 
 // kInputFaceMostTriangles remain, a choice noted), drawn from both sides unless `own_closed`, the
 // fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
 // surface's triangles as its outer faces. `fair_cracks`: the cracks between pieces faired
-// (crack_fairing.h). One log line says what was done.
+// (crack_fairing.h). `beside` runs while the cut does (the cut sees the model as it was before);
+// not at all when no cut is made. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
                          double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset, bool fair_cracks,
-                         PrescoreReport& report) {
+                         const std::function<void()>& beside, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     if (!early || !early->made_for(surface, model.pieces.size()))
         early = std::make_unique<SurfaceSimplification>(surface, model.pieces.size());
@@ -275,10 +283,12 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     std::array<uint64_t, 6> head{};
     try {
         const TriangleMesh cut = mesh_from_bytes(early->run->finish());
+        spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         // meshoptimizer's reduction: ~1 us per input triangle.
         const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
                                 (own ? 1e-6 * double(own->triangles.size()) : 0.0);
-        const std::string bytes = run_isolated(
+        IsolatedRun cutting(
             [&] {
                 std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
                 const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
@@ -309,6 +319,8 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
                 return reply() + encode_model(m);
             },
             deadline);
+        beside();
+        const std::string bytes = cutting.finish();
         if (bytes.size() < sizeof head) throw IsolatedFailure("no reply");
         std::memcpy(head.data(), bytes.data(), sizeof head);
         if (over_budget(head[0])) return;
@@ -529,8 +541,13 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     model.constraints = reduce_constraints(place_constraints(model.mesh, topo, model.tet_piece),
                                            settings.constraints_per_pair);
     timer.lap("constraints");
-    build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
-    timer.lap("pieces");
+    build_piece_shapes(model, topo, settings.hollow ? &cavity : nullptr);
+    // The pieces' masses and collision parts are made beside the render surfaces' cut.
+    bool bodies = false;
+    const auto build_bodies = [&] {
+        build_piece_bodies(model, settings, report.input.diagonal);
+        bodies = true;
+    };
     if (settings.render_surface) {
         // An alpha wrap made for the tets alone (not one that gave thin walls a thickness) is not
         // what the user modelled: the outer faces come from the input itself.
@@ -539,14 +556,18 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
                             own ? &input : nullptr,
                             report.input.closed() && report.input.volume > 0,
                             kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal,
-                            settings.crack_fairing, report);
-        timer.lap("render surfaces");
+                            settings.crack_fairing, build_bodies, report);
+        if (!bodies) build_bodies();
+        timer.lap("pieces + render surfaces");
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).
         if (report.render_surfaces > 0 && !loaded.plain) {
             add_appearance(model, read.path, report.scale, read.turned, choices);
             timer.lap("appearance");
         }
+    } else {
+        build_bodies();
+        timer.lap("pieces");
     }
     report.surface = std::move(fit.surface);
     model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices, report.impact);

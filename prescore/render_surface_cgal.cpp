@@ -7,6 +7,8 @@
 #include "prescore/render_surface.h"
 
 #include <algorithm>
+#include <array>
+#include <exception>
 #include <map>
 #include <memory>
 #include <optional>
@@ -397,10 +399,6 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const double eps = 1e-7 * (hi - lo).norm();
-    const Cuttable first = cuttable(input, settings.crease_degrees);
-    const bool input_ok = first.ok;
-    std::optional<Cuttable> second;  // `retry`, made when first needed
-
     // Faired cracks (crack_fairing.h): the cells cut from the tets by the smoothed piece field,
     // their points placed from the tet vertices wherever those are (pushed out below), so that
     // the two sides of a crack stay one surface. Otherwise the cells are the tet surfaces.
@@ -411,8 +409,24 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     if (settings.fair_cracks && small)
         spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
                      model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
-    if (settings.fair_cracks && !small) {
-        faired = crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, tet_cells));
+    // The surface's index and the faired cells, one beside the other.
+    std::optional<Cuttable> made;
+    std::array<std::exception_ptr, 2> failed;
+    workers.run(2, 1, [&](size_t i) {
+        try {
+            if (i == 0) made = cuttable(input, settings.crease_degrees);
+            else if (settings.fair_cracks && !small)
+                faired = crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, tet_cells));
+        } catch (...) {
+            failed[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+    const Cuttable first = std::move(*made);
+    const bool input_ok = first.ok;
+    std::optional<Cuttable> second;  // `retry`, made when first needed
+    if (faired) {
         spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} pieces "
                       "held inside, {} cells open", faired->cut_tets, faired->points.size(), faired->degenerate,
                       faired->held, faired->open);
