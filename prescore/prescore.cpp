@@ -230,8 +230,8 @@ SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : 
 // kInputFaceMostTriangles remain, a choice noted), drawn from both sides unless `own_closed`, the
 // fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
 // surface's triangles as its outer faces. `fair_cracks`: the cracks between pieces faired
-// (crack_fairing.h). `beside` runs while the cut does (the cut sees the model as it was before);
-// not at all when no cut is made. One log line says what was done.
+// (crack_fairing.h). `beside` runs while the simplification finishes, before the cut (which then
+// sees what it did); not at all when no cut is made. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
                          double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset, bool fair_cracks,
                          const std::function<void()>& beside, PrescoreReport& report) {
@@ -282,20 +282,29 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     Model cut_model;
     std::array<uint64_t, 6> head{};
     try {
+        // While the simplification finishes (it began before the tets): `beside`, and the faired
+        // cracks' cells, which need the pieces alone.
+        beside();
+        std::optional<CrackCells> faired;
+        try {
+            if (fair_cracks) faired = faired_crack_cells(model);
+        } catch (const std::exception& e) {
+            spdlog::info("render surfaces: cracks not faired ({})", e.what());
+        }
         const TriangleMesh cut = mesh_from_bytes(early->run->finish());
         spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         // meshoptimizer's reduction: ~1 us per input triangle.
         const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
                                 (own ? 1e-6 * double(own->triangles.size()) : 0.0);
-        IsolatedRun cutting(
+        const std::string bytes = run_isolated(
             [&] {
                 std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
                 const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
                 if (double(model.pieces.size()) * double(h[0]) > kRenderSurfaceWork) return reply();
                 Model m = model;
                 std::vector<RenderSurface> found =
-                    render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
+                    render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr, &faired);
                 if (own) {
                     const TriangleMesh drawn = reduce_surface(*own, kRenderSurfaceTriangles);
                     h[5] = drawn.triangles.size();
@@ -319,8 +328,6 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
                 return reply() + encode_model(m);
             },
             deadline);
-        beside();
-        const std::string bytes = cutting.finish();
         if (bytes.size() < sizeof head) throw IsolatedFailure("no reply");
         std::memcpy(head.data(), bytes.data(), sizeof head);
         if (over_budget(head[0])) return;
@@ -542,7 +549,8 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
                                            settings.constraints_per_pair);
     timer.lap("constraints");
     build_piece_shapes(model, topo, settings.hollow ? &cavity : nullptr);
-    // The pieces' masses and collision parts are made beside the render surfaces' cut.
+    // The pieces' masses and collision parts are made while the render surfaces' simplification
+    // finishes.
     bool bodies = false;
     const auto build_bodies = [&] {
         build_piece_bodies(model, settings, report.input.diagonal);

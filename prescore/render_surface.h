@@ -31,6 +31,7 @@
 
 #include "core/geometry.h"
 #include "core/model.h"
+#include "prescore/crack_fairing.h"
 
 namespace shatter {
 
@@ -92,13 +93,20 @@ struct RenderSurfaceSettings {
     bool fair_cracks = true;        // cells from the tet vertices with the cracks faired (crack_fairing.h)
 };
 
+// The cells of the faired cracks between `model`'s pieces (crack_fairing.h); none when its
+// pieces have fewer than kCrackFairingTetsPerPiece tets on average (logged).
+std::optional<CrackCells> faired_crack_cells(const Model& model);
+
 // One render surface per model piece; `input` is the closed, outward surface the tets were
 // made from (the alpha wrap when prescore wrapped the input).
 // `retry`, when given, is the surface `input` was simplified from: a piece whose cut fails on
 // `input` is cut again from it (a simplified surface may cross itself where it is cut).
+// `faired`, when given, is faired_crack_cells(model), made beforehand (else it is made here,
+// when settings.fair_cracks, beside the cut's index of `input`).
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
                                            const RenderSurfaceSettings& settings,
-                                           const TriangleMesh* retry = nullptr);
+                                           const TriangleMesh* retry = nullptr,
+                                           const std::optional<CrackCells>* faired = nullptr);
 
 // An input that prescore alpha-wrapped for its tets (open, crossing itself, an assembly of
 // parts) and did not thicken: the wrap, cut as above, gives the pieces their fracture and cavity

@@ -392,8 +392,19 @@ Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
 
 }  // namespace
 
+std::optional<CrackCells> faired_crack_cells(const Model& model) {
+    if (model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size()) {
+        spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
+                     model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
+        return std::nullopt;
+    }
+    const TetTopology topo = build_topology(model.mesh);
+    return crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, cells_of(model, topo)));
+}
+
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
-                                           const RenderSurfaceSettings& settings, const TriangleMesh* retry) {
+                                           const RenderSurfaceSettings& settings, const TriangleMesh* retry,
+                                           const std::optional<CrackCells>* faired_given) {
     const TetTopology topo = build_topology(model.mesh);
     Workers workers(default_threads());  // the pieces' cells and cuts are independent of each other
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
@@ -405,18 +416,14 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     const std::vector<Cell> tet_cells = cells_of(model, topo);
     std::vector<Cell> cells = tet_cells;
     std::optional<CrackCells> faired;
-    const bool small = model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size();
-    if (settings.fair_cracks && small)
-        spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
-                     model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
-    // The surface's index and the faired cells, one beside the other.
+    if (settings.fair_cracks && faired_given) faired = *faired_given;
+    // The surface's index, and the faired cells when not given, one beside the other.
     std::optional<Cuttable> made;
     std::array<std::exception_ptr, 2> failed;
     workers.run(2, 1, [&](size_t i) {
         try {
             if (i == 0) made = cuttable(input, settings.crease_degrees);
-            else if (settings.fair_cracks && !small)
-                faired = crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, tet_cells));
+            else if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model);
         } catch (...) {
             failed[i] = std::current_exception();
         }
