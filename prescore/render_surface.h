@@ -46,7 +46,7 @@ namespace shatter {
 // costs ~20 us per triangle removed (2 million to 200,000 triangles: 41 s): a surface over
 // kRenderSurfaceSimplifyLimit is first reduced to kRenderSurfaceReduced by meshoptimizer's (1.3 s
 // for those 2 million), whose touching sheets and crossings simplify_surface mends. The
-// simplification and the cut run in a child process (core/isolated.h) with a deadline of
+// simplification and the cut each run in a child process (core/isolated.h) with a deadline of
 // kRenderSurfaceSeconds plus both's expected time: a crash inside CGAL (its repair of crossings
 // is experimental) or a run past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
