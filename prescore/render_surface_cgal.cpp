@@ -434,9 +434,9 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     const bool input_ok = first.ok;
     std::optional<Cuttable> second;  // `retry`, made when first needed
     if (faired) {
-        spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} pieces "
-                      "held inside, {} cells open", faired->cut_tets, faired->points.size(), faired->degenerate,
-                      faired->held, faired->open);
+        spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} rounds "
+                      "of the volume fit, {} pieces held inside, {} cells open", faired->cut_tets, faired->points.size(),
+                      faired->degenerate, faired->fit_rounds, faired->held, faired->open);
         if (faired->open > 0) {
             // All or none: a piece on its tet faces beside a faired neighbour would gape.
             spdlog::info("render surfaces: cracks not faired ({} of {} faired cells do not close), the tet faces "
