@@ -15,7 +15,8 @@
 // A node's transform is then exactly the trajectory's pose [R | p] (BodyPose: world =
 // R (x - origin) + p), and its rest transform is the pose of frame 0, for viewers that do not
 // play animations. Vertices are render/mesh_builder's, so that the .glb shows what render shows:
-// a piece's render surface indexed with its normals (outer faces smooth, fracture faces flat),
+// a piece's render surface indexed with its normals (outer faces smooth, fracture faces flat,
+// with texture coordinates of their own: CrackUv),
 // else its tet surface, and boxes and spheres, flat; the exporter's enforced
 // JoinIdenticalVertices step shares the vertices of coplanar flat neighbours again.
 //
@@ -192,7 +193,31 @@ bool model_has_vertex_colours(const Model& model) {
 // A piece's node: one mesh per face kind present (per kind and material when its render surface
 // has the input's materials), vertices about its centre of mass: its render surface with its
 // normals when it has one (outer faces smooth), else its tet surface, flat.
-void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderSettings& look) {
+// The crack faces' texture coordinates: a box projection of the point where it lies in the
+// unbroken object (the piece's vertex plus its centre of mass), onto the plane of the two axes
+// its face's normal is least along, over the object's bounding box (its diagonal is one unit).
+// Both sides of a crack are the same points with opposite normals: they get the same
+// coordinates, so that an interior texture runs on across the crack.
+struct CrackUv {
+    Vec3 lo = Vec3::Zero();
+    double diagonal = 1;
+    explicit CrackUv(const Model& model) {
+        Vec3 hi = Vec3::Constant(-1e300);
+        lo = Vec3::Constant(1e300);
+        for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        if (model.mesh.vertices.empty()) lo = hi = Vec3::Zero();
+        diagonal = std::max((hi - lo).norm(), 1e-12);
+    }
+    void set(Vertex& v, const Vec3& centre) const {
+        const Vec3 x = (Vec3(v.position[0], v.position[1], v.position[2]) + centre - lo) / diagonal;
+        const Vec3 n = Vec3(v.normal[0], v.normal[1], v.normal[2]).cwiseAbs();
+        const int axis = n.x() >= n.y() && n.x() >= n.z() ? 0 : (n.y() >= n.z() ? 1 : 2);
+        const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;
+        v.uv[0] = float(x[a]), v.uv[1] = float(x[b]);
+    }
+};
+
+void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderSettings& look, const CrackUv& crack_uv) {
     const Piece& piece = model.pieces[id];
     const IndexedVertices all = piece_mesh(piece, id, look, parts.looks);
     const bool by_material = !all.material.empty();
@@ -217,6 +242,8 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
                 }
             }
             if (part.indices.empty()) continue;
+            if (kind == FaceKind::Fracture)
+                for (Vertex& v : part.vertices) crack_uv.set(v, piece.mass.center);
             // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
             const unsigned material =
                 by_material ? parts.model_material(model, m, kind, look, vertex_colours)
@@ -227,7 +254,7 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
             const std::string mesh_name = by_material ? fmt::format("{}_{}_{}", name, kind_name(kind), m)
                                                       : fmt::format("{}_{}", name, kind_name(kind));
             parts.meshes.push_back(make_mesh(mesh_name, part.vertices.data(), part.vertices.size(), material,
-                                             part.indices.data(), part.indices.size(), textured,
+                                             part.indices.data(), part.indices.size(), textured || kind == FaceKind::Fracture,
                                              vertex_colours && kind == FaceKind::Outer));
         }
     parts.node(name, mesh_ids);
@@ -358,7 +385,8 @@ std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, co
     const std::vector<KinematicSettings> props = trajectory_props(t, where);
     SceneParts parts;
     add_textures(parts, model);
-    for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model, i, look);
+    const CrackUv crack_uv(model);
+    for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model, i, look, crack_uv);
     for (uint32_t i = 0; i < props.size(); ++i) add_prop(parts, props[i], i, where);
     for (uint32_t b = 0; b < parts.nodes.size(); ++b) parts.nodes[b]->mTransformation = pose_matrix(t.pose(0, b));
     const std::vector<aiNode*> bodies = parts.nodes;

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -631,7 +632,8 @@ std::pair<nlohmann::json, std::string> glb_chunks(const std::string& bytes) {
 // beside the Collada file) in 6 pieces exports one image, stored in the binary chunk as PNG
 // (glTF allows PNG and JPEG only) that decodes to the texture's 512 x 512, a texture naming it,
 // an outer material whose baseColorTexture resolves to it, outer primitives with TEXCOORD_0
-// using that material, fracture primitives without; and the Khronos validator finds no error.
+// using that material, fracture primitives with their own (CrackUv) and untextured materials;
+// and the Khronos validator finds no error.
 TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
     if (!fs::exists(testing_support::kDuck))
         GTEST_SKIP() << testing_support::kDuck << " is missing (fix: scripts/install-deps.sh)";
@@ -662,15 +664,18 @@ TEST(GlbExport, ATexturedInputEmbedsItsTextureWithTexcoords) {
         }
     }
     ASSERT_EQ(textured_materials.size(), 1u);
-    size_t with_uv = 0, without_uv = 0;
+    size_t textured = 0, fracture = 0;
     for (const auto& mesh_json : j["meshes"])
         for (const auto& p : mesh_json["primitives"]) {
-            const bool uv = p["attributes"].contains("TEXCOORD_0");
-            EXPECT_EQ(uv, textured_materials.count(p["material"].get<size_t>()) == 1);
-            (uv ? with_uv : without_uv) += 1;
+            const size_t material = p["material"].get<size_t>();
+            const std::string name = j["materials"][material].value("name", "");
+            const bool crack = name.size() > 9 && name.substr(name.size() - 9) == "_fracture";
+            EXPECT_EQ(p["attributes"].contains("TEXCOORD_0"), textured_materials.count(material) == 1 || crack) << name;
+            textured += textured_materials.count(material);
+            fracture += crack;
         }
-    EXPECT_EQ(with_uv, m.pieces.size());  // every piece shows some of the duck's outside
-    EXPECT_GT(without_uv, 0u);            // and its fracture faces
+    EXPECT_EQ(textured, m.pieces.size());  // every piece shows some of the duck's outside
+    EXPECT_GT(fracture, 0u);               // and its fracture faces
     ::testing::Test::RecordProperty("glb_bytes", std::to_string(bytes.size()));
 
     const auto node = find_program("node");
@@ -745,6 +750,75 @@ TEST(GlbExport, AnInputsVertexColoursBecomeColor0) {
     if (!node || !modules) GTEST_SKIP() << "node or gltf-validator missing: the validator part is skipped";
     std::string out;
     ASSERT_EQ(validator_errors(*node, *modules, dir.file("cube.glb"), &out), 0) << out;
+}
+
+// Crack faces carry texture coordinates (an interior texture can use them): each vertex's point in
+// the unbroken object (vertex + its piece's centre of mass), over the tet mesh's bounding box in
+// units of its diagonal, projected along its normal's largest axis. Both sides of a crack are the
+// same points: they get the same coordinates.
+TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
+    TempDir dir;
+    std::string cube;
+    for (const auto& c : kCorners) cube += fmt::format("v {} {} {}\n", c[0], c[1], c[2]);
+    for (const auto& f : kFaces) cube += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    MeshSettings mesh;
+    mesh.path = dir.write("cube.obj", cube);
+    mesh.scale = 0.1;
+    PrescoreSettings settings;
+    settings.pieces = 4;
+    settings.resolution = 10;
+    const Model m = prescore(mesh, settings, nullptr);
+    export_glb(m, test_trajectory(m, kFrames, false), dir.file("c.glb"));
+    Imported g(dir.file("c.glb"));
+    ASSERT_TRUE(g.scene);
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Vec3& v : m.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const double diagonal = (hi - lo).norm();
+    // Per crack triangle (by its corners' points, 0.1 um): the piece it was first seen in and its
+    // corners' coordinates by point.
+    using Point = std::array<long long, 3>;
+    std::map<std::array<Point, 3>, std::pair<uint32_t, std::map<Point, aiVector3D>>> seen;
+    size_t checked = 0, shared = 0;
+    for (uint32_t p = 0; p < m.pieces.size(); ++p) {
+        const aiNode* n = g.node(fmt::format("piece_{}", p));
+        ASSERT_TRUE(n);
+        for (unsigned k = 0; k < n->mNumMeshes; ++k) {
+            const aiMesh* part = g.scene->mMeshes[n->mMeshes[k]];
+            aiString name;
+            g.scene->mMaterials[part->mMaterialIndex]->Get(AI_MATKEY_NAME, name);
+            if (std::string(name.C_Str()).find("fracture") == std::string::npos) continue;
+            ASSERT_TRUE(part->HasTextureCoords(0)) << name.C_Str();
+            std::vector<Point> point(part->mNumVertices);
+            for (unsigned i = 0; i < part->mNumVertices; ++i) {
+                const Vec3 x = Vec3(part->mVertices[i].x, part->mVertices[i].y, part->mVertices[i].z) + m.pieces[p].mass.center;
+                const Vec3 u = (x - lo) / diagonal;
+                const Vec3 normal = Vec3(part->mNormals[i].x, part->mNormals[i].y, part->mNormals[i].z).cwiseAbs();
+                const int axis = normal.x() >= normal.y() && normal.x() >= normal.z() ? 0 : (normal.y() >= normal.z() ? 1 : 2);
+                const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;
+                const aiVector3D& t = part->mTextureCoords[0][i];  // assimp's convention: v up
+                EXPECT_NEAR(t.x, u[a], 1e-5);
+                EXPECT_NEAR(1 - t.y, u[b], 1e-5);
+                ++checked;
+                point[i] = {std::llround(x.x() * 1e7), std::llround(x.y() * 1e7), std::llround(x.z() * 1e7)};
+            }
+            for (unsigned f = 0; f < part->mNumFaces; ++f) {
+                const unsigned* c = part->mFaces[f].mIndices;
+                std::array<Point, 3> key = {point[c[0]], point[c[1]], point[c[2]]};
+                std::sort(key.begin(), key.end());
+                std::map<Point, aiVector3D> uv;
+                for (int j = 0; j < 3; ++j) uv[point[c[j]]] = part->mTextureCoords[0][c[j]];
+                const auto [it, fresh] = seen.emplace(key, std::make_pair(p, uv));
+                if (fresh || it->second.first == p) continue;
+                ++shared;  // the same triangle on the crack's other side
+                for (const auto& [at, t] : uv) {
+                    EXPECT_NEAR(it->second.second[at].x, t.x, 1e-5);
+                    EXPECT_NEAR(it->second.second[at].y, t.y, 1e-5);
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked, 50u);
+    EXPECT_GT(shared, 10u);  // triangles seen from both sides
 }
 
 }  // namespace
