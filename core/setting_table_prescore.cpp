@@ -193,6 +193,16 @@ SettingsSection prescore_section() {
                      "render surfaces: the crack between two pieces drawn as one smooth surface (false: the zigzag of "
                      "the tet faces between them)")
                  .json_unless_default(),
+             number("crack_roughness", "tet sizes", at(&Shot::prescore, &PrescoreSettings::crack_roughness),
+                    kCrackRoughnessLimits,
+                    "faired cracks: the most a crack point moves, by a seeded relief faded in over one wavelength from the "
+                    "surface, the same on both sides (0: smooth, as glass breaks; 0.3 to 1: stone or concrete); cells it "
+                    "would fold keep the tet faces, logged")
+                 .json_unless_default(),
+             number("crack_roughness_scale", "tet sizes",
+                    at(&Shot::prescore, &PrescoreSettings::crack_roughness_scale), kCrackRoughnessScaleLimits,
+                    "faired cracks: the relief's wavelength")
+                 .json_unless_default(),
              choice<SeedMode>("seeds", at(&Shot::prescore, &PrescoreSettings::seeds),
                               {{"uniform", SeedMode::Uniform}, {"impact", SeedMode::Impact}},
                               "where the seed tets go: uniform: anywhere, pieces of about one size; impact: denser "

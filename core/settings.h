@@ -79,12 +79,16 @@ struct PrescoreSettings {
     uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
     bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
+    double crack_roughness = 0;           // faired cracks' relief: its amplitude (unit: tet sizes); 0: smooth
+    double crack_roughness_scale = 2;     // and its wavelength (unit: tet sizes)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go
     double impact_ratio = 10;             // impact seeds: density at the contact over far from it (unit: 1)
     Length impact_radius{0.25, true};     // impact seeds: fall-off radius of the density
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
+inline constexpr Limits kCrackRoughnessLimits{0, 1, "tet sizes"};
+inline constexpr Limits kCrackRoughnessScaleLimits{0.5, 100, "tet sizes"};
 inline constexpr Limits kDensityLimits{1e-3, 1e5, "kg/m^3"};
 inline constexpr Limits kHollowRelativeLimits{1e-4, 0.5, "of the diagonal"};
 inline constexpr Limits kHollowAbsoluteLimits{1e-7, 1e6, "m"};

@@ -96,6 +96,21 @@ struct CrackCells {
 CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const std::vector<uint32_t>& tet_piece,
                        const std::vector<std::array<FaceKind, 4>>& face_kind, const CrackFairingSettings& settings = {});
 
+// The faired cracks roughened: every point of `cells` on a crack (`placed`: its positions, as
+// CrackCells::place gives them) moves by `amplitude` times crack_relief at its place, faded in
+// over one wavelength from the object's boundary (times the distance to the nearest boundary
+// point over `wavelength`, at most 1); boundary points stay. The move is a smooth function of
+// position, so nearby points move alike and the cells, whose points can lie a hundredth of a tet
+// apart, do not fold unless the relief is steep for its wavelength (moving each point along its
+// own normal folded them at a tenth of a tet); the two sides of a crack are the same points, so
+// they stay one surface.
+void roughen_cracks(const CrackCells& cells, std::vector<Vec3>& placed, double amplitude, double wavelength,
+                    uint64_t seed);
+
+// The relief at `x`: three channels of gradient noise of `wavelength` plus one of half of it at
+// half the height (each seeded, in [-1, 1]) over the square root of 3, so its length is at most 1.
+Vec3 crack_relief(const Vec3& x, double wavelength, uint64_t seed);
+
 // The mean length of the tets' edges (unit: m).
 double mean_tet_edge(const TetMesh& mesh);
 

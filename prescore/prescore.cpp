@@ -229,11 +229,12 @@ SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : 
 // reduced to kRenderSurfaceTriangles by meshoptimizer first; not when more than
 // kInputFaceMostTriangles remain, a choice noted), drawn from both sides unless `own_closed`, the
 // fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
-// surface's triangles as its outer faces. `fair_cracks`: the cracks between pieces faired
-// (crack_fairing.h). `beside` runs while the simplification finishes, before the cut (which then
+// surface's triangles as its outer faces. `looks`: crack_fairing (the cracks between pieces
+// faired, crack_fairing.h) and their roughness, seeded by its seed. `beside` runs while the simplification finishes, before the cut (which then
 // sees what it did); not at all when no cut is made. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
-                         double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset, bool fair_cracks,
+                         double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset,
+                         const PrescoreSettings& looks,
                          const std::function<void()>& beside, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
     if (!early || !early->made_for(surface, model.pieces.size()))
@@ -255,7 +256,10 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     }
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
-    rs.fair_cracks = fair_cracks;
+    rs.fair_cracks = looks.crack_fairing;
+    rs.roughness = looks.crack_roughness * tet_size;
+    rs.roughness_scale = looks.crack_roughness_scale * tet_size;
+    rs.roughness_seed = looks.seed;
     const auto over_budget = [&](size_t triangles) {
         const double work = double(model.pieces.size()) * double(triangles);
         if (!(work > kRenderSurfaceWork)) return false;
@@ -287,7 +291,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
         beside();
         std::optional<CrackCells> faired;
         try {
-            if (fair_cracks) faired = faired_crack_cells(model);
+            if (rs.fair_cracks) faired = faired_crack_cells(model);
         } catch (const std::exception& e) {
             spdlog::info("render surfaces: cracks not faired ({})", e.what());
         }
@@ -564,7 +568,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
                             own ? &input : nullptr,
                             report.input.closed() && report.input.volume > 0,
                             kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal,
-                            settings.crack_fairing, build_bodies, report);
+                            settings, build_bodies, report);
         if (!bodies) build_bodies();
         timer.lap("pieces + render surfaces");
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle

@@ -91,6 +91,9 @@ struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
     double crease_degrees = 40;     // input edges with a dihedral angle above this stay sharp (unit: degrees)
     bool fair_cracks = true;        // cells from the tet vertices with the cracks faired (crack_fairing.h)
+    double roughness = 0;           // the faired cracks' relief: amplitude (unit: m; 0: none)
+    double roughness_scale = 1;     // and wavelength (unit: m)
+    uint64_t roughness_seed = 1;
 };
 
 // The cells of the faired cracks between `model`'s pieces (crack_fairing.h); none when its

@@ -447,7 +447,12 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
                 cells[p] = Cell{faired->triangles[p], faired->kinds[p]};
         }
     }
-    const auto placed = [&](std::vector<Vec3> vertices) { return faired ? faired->place(vertices) : vertices; };
+    const auto placed = [&](std::vector<Vec3> vertices) {
+        if (!faired) return vertices;
+        std::vector<Vec3> x = faired->place(vertices);
+        roughen_cracks(*faired, x, settings.roughness, settings.roughness_scale, settings.roughness_seed);
+        return x;
+    };
 
     // The largest margin of the ladder at which every cell is a valid closed surface (fewest
     // failures otherwise, the larger margin on a tie).

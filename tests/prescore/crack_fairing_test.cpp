@@ -5,7 +5,8 @@
 // On a sphere cut into 6 pieces by prescore, the render surfaces' cracks meet: every crack vertex
 // and triangle centre of a piece lies within 1e-6 of the diagonal of another piece's crack (no
 // gap, no overlap), none falls back to its tet surface, and the crack faces are less creased
-// (crack_creases.h) than the tet facets were.
+// (crack_creases.h) than the tet facets were. Roughness moves the crack's points by the seeded
+// relief, within the amplitude, and the rough sphere's pieces still meet.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -100,6 +101,48 @@ TEST(CrackFairing, AStaircaseBetweenTwoPiecesBecomesThePlaneThatMadeIt) {
     EXPECT_EQ(one, other);
 }
 
+// Roughness on the tilted plane's crack: every crack point moves by the amplitude times the
+// seeded relief at its place, faded in over one wavelength from the grid's sides (whose points
+// stay), so no farther than the amplitude; the relief is there (the mean move of the points a
+// wavelength from the sides at least a sixth of the amplitude); another seed, another relief.
+TEST(CrackFairing, RoughnessMovesTheCrackByTheSeededReliefWithinTheAmplitude) {
+    const Split s = tilted_split();
+    const TetTopology topo = build_topology(s.mesh);
+    const std::vector<std::array<FaceKind, 4>> kinds(s.mesh.tets.size(), {FaceKind::Outer, FaceKind::Outer, FaceKind::Outer, FaceKind::Outer});
+    const CrackCells cells = crack_cells(s.mesh, topo, s.piece, kinds);
+    const std::vector<Vec3> smooth = cells.place(s.mesh.vertices);
+    const double amplitude = 0.3, wavelength = 2;  // unit: the cube's side
+    std::vector<Vec3> rough = smooth, other = smooth;
+    roughen_cracks(cells, rough, amplitude, wavelength, 7);
+    roughen_cracks(cells, other, amplitude, wavelength, 8);
+    std::vector<char> on_crack(smooth.size(), 0), on_side(smooth.size(), 0);
+    for (size_t p = 0; p < 2; ++p)
+        for (size_t t = 0; t < cells.triangles[p].size(); ++t)
+            for (uint32_t v : cells.triangles[p][t]) (cells.kinds[p][t] == FaceKind::Fracture ? on_crack : on_side)[v] = 1;
+    double most = 0, sum = 0, seeds_apart = 0;
+    size_t inner = 0;
+    for (size_t i = 0; i < smooth.size(); ++i) {
+        const Vec3 d = rough[i] - smooth[i];
+        if (!on_crack[i] || on_side[i]) {
+            EXPECT_EQ(d.norm(), 0.0) << "a point off the crack or on a side moved";
+            continue;
+        }
+        most = std::max(most, d.norm());
+        seeds_apart = std::max(seeds_apart, (other[i] - rough[i]).norm());
+        // A wavelength from every side point (the sides are the grid's faces, 0 and 8): the full move.
+        if (smooth[i].minCoeff() < wavelength + 0.5 || smooth[i].maxCoeff() > 8 - wavelength - 0.5) continue;
+        const Vec3 want = amplitude * crack_relief(smooth[i], wavelength, 7);
+        EXPECT_LE((d - want).norm(), 1e-12);
+        sum += d.norm();
+        ++inner;
+    }
+    ASSERT_GT(inner, 20u);
+    EXPECT_LE(most, amplitude + 1e-12);
+    EXPECT_GT(sum / double(inner), amplitude / 6);
+    EXPECT_GT(seeds_apart, amplitude / 2);
+    ::testing::Test::RecordProperty("mean_move", std::to_string(sum / double(inner)));
+}
+
 // Distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -128,7 +171,7 @@ struct Cut {
 };
 
 // An icosphere of 5,120 triangles, 10 cm across, in 6 pieces at resolution 12, by prescore.
-Cut cut_sphere(bool fair) {
+Cut cut_sphere(bool fair, double roughness = 0) {
     testing_support::TempDir dir;
     MeshSettings mesh;
     mesh.path = dir.write("sphere.obj", test::obj_text(test::icosphere(4)));
@@ -137,6 +180,7 @@ Cut cut_sphere(bool fair) {
     settings.pieces = 6;
     settings.resolution = 12;
     settings.crack_fairing = fair;
+    settings.crack_roughness = roughness;
     PrescoreReport report;
     Cut cut;
     cut.model = prescore(mesh, settings, &report);
@@ -160,14 +204,10 @@ std::vector<std::vector<std::array<Vec3, 3>>> cracks_of(const Cut& cut) {
     return out;
 }
 
-TEST(CrackFairing, ThePiecesOfASphereMeetOnOneCrackWithinAMillionthOfTheDiagonal) {
-    const Cut cut = cut_sphere(true);
-    ASSERT_EQ(cut.surfaces.size(), 6u);
-    for (size_t p = 0; p < cut.surfaces.size(); ++p) EXPECT_FALSE(cut.surfaces[p].fell_back) << "piece " << p;
-    // Every crack corner and centre of a piece lies on another piece's crack: no gap, no overlap.
+// Every crack corner and centre of a piece lies on another piece's crack: no gap, no overlap.
+double farthest_from_the_other_side(const Cut& cut, size_t* checked) {
     const auto cracks = cracks_of(cut);
     double worst = 0;
-    size_t checked = 0;
     for (size_t p = 0; p < cracks.size(); ++p)
         for (const auto& tri : cracks[p]) {
             for (const Vec3& x : {tri[0], tri[1], tri[2], Vec3((tri[0] + tri[1] + tri[2]) / 3)}) {
@@ -176,12 +216,48 @@ TEST(CrackFairing, ThePiecesOfASphereMeetOnOneCrackWithinAMillionthOfTheDiagonal
                     if (q != p)
                         for (const auto& other : cracks[q]) nearest = std::min(nearest, distance_to_triangle(x, other[0], other[1], other[2]));
                 worst = std::max(worst, nearest);
-                ++checked;
+                ++*checked;
             }
         }
+    return worst;
+}
+
+TEST(CrackFairing, ThePiecesOfASphereMeetOnOneCrackWithinAMillionthOfTheDiagonal) {
+    const Cut cut = cut_sphere(true);
+    ASSERT_EQ(cut.surfaces.size(), 6u);
+    for (size_t p = 0; p < cut.surfaces.size(); ++p) EXPECT_FALSE(cut.surfaces[p].fell_back) << "piece " << p;
+    size_t checked = 0;
+    const double worst = farthest_from_the_other_side(cut, &checked);
     EXPECT_GT(checked, 1000u);
     EXPECT_LE(worst, 1e-6 * cut.diagonal);
     ::testing::Test::RecordProperty("worst_over_diagonal", std::to_string(worst / cut.diagonal));
+
+    // Rough cracks (0.3 tet sizes) still fit: every piece cut with its faired, roughened cell.
+    const Cut rough = cut_sphere(true, 0.3);
+    for (size_t p = 0; p < rough.surfaces.size(); ++p) EXPECT_FALSE(rough.surfaces[p].fell_back) << "rough piece " << p;
+    size_t rough_checked = 0;
+    EXPECT_LE(farthest_from_the_other_side(rough, &rough_checked), 1e-6 * rough.diagonal);
+    EXPECT_GT(rough_checked, 1000u);
+    // Its crack is the smooth one with a relief: every rough crack corner within the amplitude of
+    // the smooth crack, their mean distance not nothing (on this coarse sphere most crack points
+    // lie within a wavelength of the surface, where the relief fades: a fiftieth of the amplitude).
+    const double tet = rough.diagonal / 12, amplitude = 0.3 * tet;
+    const auto smooth_cracks = cracks_of(cut), rough_cracks = cracks_of(rough);
+    double farthest = 0, sum = 0;
+    size_t corners = 0;
+    for (const auto& piece : rough_cracks)
+        for (size_t t = 0; t < piece.size(); t += 3) {
+            double nearest = 1e300;
+            for (const auto& other : smooth_cracks)
+                for (const auto& tri : other) nearest = std::min(nearest, distance_to_triangle(piece[t][0], tri[0], tri[1], tri[2]));
+            farthest = std::max(farthest, nearest);
+            sum += nearest;
+            ++corners;
+        }
+    ASSERT_GT(corners, 100u);
+    EXPECT_LE(farthest, amplitude * 1.05);
+    EXPECT_GT(sum / double(corners), amplitude / 50);
+    ::testing::Test::RecordProperty("rough_mean_over_amplitude", std::to_string(sum / double(corners) / amplitude));
 
     // Fewer creases than the tet facets had (how many fewer: docs/render.md, "Faired cracks";
     // a density of 5 is not reached on this coarse sphere, nor on the demo).
