@@ -12,7 +12,8 @@
 // whether pieces at rest sleep ("sleep", as shipped, or "awake"; [simulate] sleep).
 // SHATTER_BENCH_LOG set: the simulation's info lines too (the joint solve "auto" chose, where rigid
 // flight ended). Goals (docs/benchmarks.md): energizing costs at most 2%; a 1,000-piece scene with >= 5,000
-// constraints runs at >= 60 steps per second.
+// constraints runs at >= 60 steps per second. Each row also has the breaking joints' books: the
+// energy their forces stored, what their stretch held, and the ratio of the two.
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -57,15 +58,21 @@ void run(const char* name, const Model& model, SimulationInput in, double alpha,
         const auto* bytes = reinterpret_cast<const unsigned char*>(f);
         for (size_t i = 0; i < sizeof(f); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
     }
+    // The books of the breaks: what the broken joints' forces stored, and what they held by their
+    // stretch (equal when the joints' forces match their stretch; docs/physics.md section 5b).
+    double stored = 0;
+    for (const BreakRecord& b : r.breaks) stored += b.kicks.stored_energy;
+    const double stretch = r.energy.empty() ? 0.0 : r.energy.back().removed;
     const char* solve = solves_joints_directly(model, in.simulate) ? "+direct"
                         : in.simulate.joints == JointSolve::Iterative ? "+iterative"
                                                                        : "";
-    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u,%.1f\n", name, solve,
+    std::printf("%s%s,%zu,%zu,%u,%g,%llu,%zu,%zu,%016llx,%.4f,%.1f,%.1f,%.6f,%.3f,%u,%.1f,%.4g,%.4g,%.3g\n", name, solve,
                 model.pieces.size(),
                 model.constraints.size(), in.simulate.iterations, alpha, static_cast<unsigned long long>(r.steps),
                 r.breaks.size(), count_fragments(model, r.breaks), static_cast<unsigned long long>(hash), s,
                 double(r.steps) / s, double(r.steps) / cpu, r.energize_seconds,
-                100.0 * r.energize_seconds / s, r.asleep, r.steps ? double(r.solver_iterations) / double(r.steps) : 0.0);
+                100.0 * r.energize_seconds / s, r.asleep, r.steps ? double(r.solver_iterations) / double(r.steps) : 0.0,
+                stored, stretch, stored > 0 ? stretch / stored : 0.0);
     std::fflush(stdout);
 }
 
@@ -106,7 +113,7 @@ int main(int argc, char** argv) {
     if (argc > 7) g_sleep = std::string(argv[7]) != "awake";
     const auto wanted = [&](const std::string& name) { return only.empty() || only == name; };
     std::printf("scene,pieces,constraints,iterations,alpha,steps,breaks,fragments,poses_hash,wall_s,steps_per_s,steps_per_cpu_s,energize_s,"
-                "energize_percent,asleep,iterations_per_step\n");
+                "energize_percent,asleep,iterations_per_step,stored_J,stretch_J,stretch_over_stored\n");
 
     if (wanted("bunny")) {
     MeshSettings mesh;

@@ -47,7 +47,7 @@ SIMULATE_COLUMNS = [("scene", "scene", "text"), ("pieces", "pieces", "int"), ("c
                     ("steps_per_s", "steps/s", "text"), ("steps_per_cpu_s", "steps per CPU s", "text"),
                     ("energize_s", "energizing s", "text"), ("energize_percent", "energizing %", "text"),
                     ("asleep", "asleep", "int"), ("iterations_per_step", "iterations a step", "text"),
-                    ("poses_hash", "poses_hash", "text")]
+                    ("stretch_over_stored", "stretch over stored", "text"), ("poses_hash", "poses_hash", "text")]
 DEMO_STAGES = ["prescore", "simulate", "render", "encode", "sheet", "plot", "export", "report"]
 DEMO_BLENDER_PHASES = ["import", "fracture", "constraints", "bake", "render"]
 
