@@ -22,7 +22,9 @@
 // the demo two pieces kept 3% and 14% of their tets' volume), so each piece's field is then
 // scaled, chi_p -> s_p chi_p (still linear in a tet: nothing below changes), to fit its cell's
 // volume to its tets': up to `fit_rounds` rounds, each multiplying s_p by the square root of
-// (tets' volume / cell's), by at most e^0.4, for the pieces off by more than `fit_tolerance`. A
+// (tets' volume / cell's), by at most e^0.4, for the pieces off by more than `fit_tolerance` (two
+// rounds: each costs an arrangement, and on the demo, the cat and the horse more rounds left the
+// cracks no smoother, docs/log.md). A
 // piece that still keeps less than `keep` of its tets' volume is cut again with the field around
 // it smoothed over sigma / 2, then sigma / 4, and last with the vertices inside it (whose tets are
 // all its own) its alone, so that its cracks stay within the tets that touch them.
@@ -61,7 +63,7 @@ inline constexpr size_t kCrackFairingTetsPerPiece = 100;
 
 struct CrackFairingSettings {
     double width = 1.5;           // sigma, the field's smoothing (unit: mean tet edges)
-    int fit_rounds = 8;           // most rounds of the volume fit (0: none)
+    int fit_rounds = 2;           // most rounds of the volume fit (0: none)
     double fit_tolerance = 0.05;  // a cell within this share of its tets' volume is left as it is
     double keep = 0.75;           // least share of its tets' volume a piece's cell keeps before it is held
 };

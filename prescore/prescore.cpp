@@ -5,11 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <thread>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -22,6 +24,7 @@
 #include "core/progress.h"
 #include "core/stage_file.h"
 #include "core/utf8.h"
+#include "core/workers.h"
 #include "meshio/appearance.h"
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
@@ -286,14 +289,29 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     Model cut_model;
     std::array<uint64_t, 6> head{};
     try {
-        // While the simplification finishes (it began before the tets): `beside`, and the faired
-        // cracks' cells, which need the pieces alone.
-        beside();
+        // While the simplification finishes (it began before the tets): `beside` on a thread of
+        // its own, and the faired cracks' cells, which need the pieces' tets and surfaces alone
+        // (`beside` sets their masses and collision parts).
         std::optional<CrackCells> faired;
-        try {
-            if (rs.fair_cracks) faired = faired_crack_cells(model);
-        } catch (const std::exception& e) {
-            spdlog::info("render surfaces: cracks not faired ({})", e.what());
+        {
+            std::exception_ptr beside_failed;
+            const auto run_beside = [&] {
+                try {
+                    beside();
+                } catch (...) {
+                    beside_failed = std::current_exception();
+                }
+            };
+            std::optional<std::thread> side;
+            if (default_threads() > 1) side.emplace(run_beside);
+            else run_beside();
+            try {
+                if (rs.fair_cracks) faired = faired_crack_cells(model);
+            } catch (const std::exception& e) {
+                spdlog::info("render surfaces: cracks not faired ({})", e.what());
+            }
+            if (side) side->join();
+            if (beside_failed) std::rethrow_exception(beside_failed);
         }
         const TriangleMesh cut = mesh_from_bytes(early->run->finish());
         spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
