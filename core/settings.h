@@ -80,8 +80,8 @@ struct PrescoreSettings {
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
     bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go
-    double impact_ratio = 10;             // impact seeds: density at the contact over far from it (unit: 1)
-    Length impact_radius{0.25, true};     // impact seeds: fall-off radius of the density
+    double impact_ratio = 20;             // impact seeds: density at the contact over far from it (unit: 1)
+    Length impact_radius{0.2, true};      // impact seeds: fall-off radius of the density
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};
