@@ -228,23 +228,31 @@ SettingsSection prescore_section() {
                               "a seed placement", "use \"uniform\", \"impact\" or \"points\"")
                  .json_unless_default()
                  .flag("--seeds"),
-             number("impact_ratio", "", at(&Shot::prescore, &PrescoreSettings::impact_ratio), kImpactRatioLimits,
-                    "impact seeds: the density of seeds at the contact over the density far from it (pieces there "
-                    "about this many times smaller)")
-                 .json_unless_default(),
-             custom("impact_radius", "length", d.impact_radius.str().c_str(), "1e-3 to 10 of the diagonal, or > 0 m",
-                    "impact seeds: the density falls off as exp(-(d / radius)^2) with the distance d from the contact",
+             optional_number("impact_ratio", "", at(&Shot::prescore, &PrescoreSettings::impact_ratio),
+                             kImpactRatioLimits,
+                             "impact seeds: the density of seeds at the contact over the density far from it (pieces "
+                             "there about this many times smaller); \"auto\": from the impact's speed and the material "
+                             "(\"Impact seeds\" below)",
+                             "\"auto\"", Unset::Omitted),
+             custom("impact_radius", "length", "\"auto\"", "1e-3 to 10 of the diagonal, or > 0 m, or \"auto\"",
+                    "impact seeds: the density falls off as exp(-(d / radius)^2) with the distance d from the "
+                    "contact; \"auto\": as impact_ratio",
                     [](TomlSection& s, Shot& shot) {
-                        read_length(s, "impact_radius", shot.prescore.impact_radius, [](const std::string& where,
-                                    const Length& l, bool from_flag) {
+                        const toml::node* n = s.node("impact_radius");
+                        if (n && n->is_string() && n->as_string()->get() == "auto") {
+                            shot.prescore.impact_radius.reset();
+                            return;
+                        }
+                        Length radius = shot.prescore.impact_radius.value_or(Length{});
+                        read_length(s, "impact_radius", radius, [](const std::string& where, const Length& l,
+                                                                    bool from_flag) {
                             check_length(where, "impact_radius", l, kImpactRadiusRelativeLimits,
                                          kImpactRadiusAbsoluteLimits, from_flag);
-                        });
+                        }, ", or impact_radius = \"auto\"");
+                        if (n) shot.prescore.impact_radius = radius;
                     })
                  .json([](const Shot& s, ojson& j) {
-                     const Length& r = s.prescore.impact_radius;
-                     const Length d = PrescoreSettings{}.impact_radius;
-                     if (r.value != d.value || r.relative != d.relative) j["impact_radius"] = r.str();
+                     if (s.prescore.impact_radius) j["impact_radius"] = s.prescore.impact_radius->str();
                  }),
              custom("seed_points", "m", "[]", "each -1e6 to 1e6",
                     "seeds = \"points\": [[x, y, z], ...] in the model's frame (the mesh's coordinates at its scale, "
@@ -256,7 +264,6 @@ SettingsSection prescore_section() {
                      for (const auto& p : s.prescore.seed_points) a.push_back({p[0], p[1], p[2]});
                      j["seed_points"] = a;
                  })},
-
             {}};
 }
 

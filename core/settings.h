@@ -83,8 +83,10 @@ struct PrescoreSettings {
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
     bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go
-    double impact_ratio = 20;             // impact seeds: density at the contact over far from it (unit: 1)
-    Length impact_radius{0.2, true};      // impact seeds: fall-off radius of the density
+    // Impact seeds: the density at the contact over far from it (unit: 1), and its fall-off radius;
+    // unset: "auto", from the impact's speed and the material (prescore/graded_seeds.h).
+    std::optional<double> impact_ratio;
+    std::optional<Length> impact_radius;
     std::vector<std::array<double, 3>> seed_points;  // seeds = "points" (unit: m, the model's frame)
     std::string seed_points_where;        // where seed_points was given ("file:line", the flag), for messages
 };

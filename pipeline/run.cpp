@@ -412,6 +412,9 @@ private:
         if (shot_.prescore.seeds == SeedMode::Impact && !shot_.generate) {
             inputs["scene"] = to_json(shot_.scene);
             inputs["object"] = to_json(shot_.object);
+            if (!shot_.prescore.impact_ratio || !shot_.prescore.impact_radius)  // "auto": from the material
+                inputs["material"] = {{"strength", shot_.material.strength},
+                                      {"density", shot_.material.density.value_or(shot_.prescore.density)}};
         }
         return inputs;
     }
@@ -700,10 +703,14 @@ std::string format_impact(const json& impact) {
                            contacts.size(), contacts.size() == 1 ? "" : "s");
     const json& p = (*first)["point_m"];
     return fmt::format("impact:   at ({:.3f}, {:.3f}, {:.3f}) m, speed {:.2f} m/s, on the {} after {:.3f} s; pieces graded: "
-                       "seeds {:g} times denser there, falling off over {:.3g} m\n",
+                       "seeds {:.3g} times denser there, falling off over {:.3g} m{}\n",
                        p[0].get<double>(), p[1].get<double>(), p[2].get<double>(),
                        (*first)["speed_m_per_s"].get<double>(), (*first)["with"].get<std::string>(),
-                       (*first)["time_s"].get<double>(), impact["ratio"].get<double>(), impact["radius_m"].get<double>());
+                       (*first)["time_s"].get<double>(), impact["ratio"].get<double>(), impact["radius_m"].get<double>(),
+                       impact.value("ratio_auto", false) || impact.value("radius_auto", false)
+                           ? fmt::format(" (auto: damage number rho v^2 / strength {:.3g})",
+                                         impact.value("damage_number", 0.0))
+                           : "");
 }
 
 }  // namespace

@@ -481,8 +481,10 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         SceneSettings none;
         none.ground = false;
         const ObjectSettings still;
+        const MaterialSettings material;
         GradedSeeds graded = grade_by_impact(model.mesh, topo, settings, flight ? flight->scene : none,
-                                             flight ? flight->object : still, report.input.diagonal, choices);
+                                             flight ? flight->object : still, flight ? flight->material : material,
+                                             report.input.diagonal, choices);
         report.impact = graded.record();
         density = std::move(graded.density);
         timer.lap("impact");
@@ -526,7 +528,7 @@ Model prescore_shot(const Shot& shot, PrescoreReport* report_out) {
             throw_input_error(shot.path, "the shot has neither [mesh] nor [generate]",
                               "add [mesh] with path = \"your.obj\", or [generate] with kind = \"beam\", \"plate\" or "
                               "\"chain\" (docs/shot.md)");
-        const FlightScene flight{shot.scene, shot.object};
+        const FlightScene flight{shot.scene, shot.object, shot.material};
         return prescore(shot.mesh, shot.prescore, report_out, &flight);
     }
     PrescoreReport local;

@@ -33,11 +33,18 @@ TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
     EXPECT_NEAR(first["point_m"][0].get<double>(), 0, 0.03);
     EXPECT_NEAR(first["point_m"][1].get<double>(), 0, 1e-9);
     EXPECT_NEAR(first["point_m"][2].get<double>(), 0, 0.03);
+    // impact_ratio "auto": 1 + 12 D, D = rho v^2 / strength = 1100 x 2 g 1.5 / 2e4 = 1.62 (the default
+    // shot's cast): 20.4.
+    const double damage = 1100 * 2 * 9.81 * 1.5 / 2e4;
+    EXPECT_NEAR(impact["damage_number"].get<double>(), damage, 1e-3);
+    EXPECT_NEAR(impact["ratio"].get<double>(), 1 + 12 * damage, 1e-2);
     const std::string closing = format_run_summary(r);
     EXPECT_NE(closing.find("impact:   at ("), std::string::npos) << closing;
-    EXPECT_NE(closing.find(" m, speed 5.42 m/s, on the ground after 0.553 s; pieces graded: seeds 20 times denser there"),
+    EXPECT_NE(closing.find(" m, speed 5.42 m/s, on the ground after 0.553 s; pieces graded: seeds 20.4 times denser "
+                           "there"),
               std::string::npos)
         << closing;
+    EXPECT_NE(closing.find("(auto: damage number rho v^2 / strength 1.62)"), std::string::npos) << closing;
 }
 
 }  // namespace
