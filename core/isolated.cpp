@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -38,7 +39,10 @@ bool write_all(int fd, const void* data, size_t n) {
     for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(s, SIG_DFL);
     std::string out;
     try {
-        out = "R" + work();
+        const std::string result = work();
+        out.reserve(result.size() + 1);
+        out.push_back('R');
+        out += result;
     } catch (const Error& e) {
         out = std::string("E") + e.what();
     } catch (const std::bad_alloc&) {
@@ -49,32 +53,55 @@ bool write_all(int fd, const void* data, size_t n) {
     ::_exit(write_all(fd, out.data(), out.size()) ? 0 : 71);
 }
 
-std::string in_process(const std::function<std::string()>& work) { return work(); }
-
 }  // namespace
 
-std::string run_isolated(const std::function<std::string()>& work, double deadline_seconds) {
+IsolatedRun::IsolatedRun(const std::function<std::string()>& work, double deadline_seconds)
+    : deadline_seconds_(deadline_seconds),
+      deadline_(std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                        std::chrono::duration<double>(deadline_seconds))) {
     int fds[2];
-    if (::pipe(fds) != 0) return in_process(work);
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid < 0) {
-        ::close(fds[0]);
+    if (::pipe(fds) == 0) {
+        std::fflush(nullptr);
+        pid_ = ::fork();
+        if (pid_ == 0) {
+            ::close(fds[0]);
+            child(work, fds[1]);
+        }
         ::close(fds[1]);
-        return in_process(work);
-    }
-    if (pid == 0) {
+        if (pid_ > 0) {
+            fd_ = fds[0];
+            return;
+        }
         ::close(fds[0]);
-        child(work, fds[1]);
     }
-    ::close(fds[1]);
+    // No child can be made: the work runs here, now.
+    try {
+        in_process_ = work();
+    } catch (...) {
+        in_process_error_ = std::current_exception();
+    }
+}
+
+IsolatedRun::~IsolatedRun() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    ::close(fd_);
+    while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
+    }
+}
+
+std::string IsolatedRun::finish() {
+    if (pid_ <= 0) {
+        if (in_process_error_) std::rethrow_exception(std::exchange(in_process_error_, nullptr));
+        return std::move(in_process_);
+    }
+    const pid_t pid = std::exchange(pid_, -1);
     std::string bytes;
     char buf[1 << 16];
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(deadline_seconds);
     bool timed_out = false;
     for (;;) {
-        const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-        pollfd p{fds[0], POLLIN, 0};
+        const double left = std::chrono::duration<double>(deadline_ - std::chrono::steady_clock::now()).count();
+        pollfd p{fd_, POLLIN, 0};
         const int ready = left > 0 ? ::poll(&p, 1, int(std::min(left * 1e3 + 1, 60e3))) : 0;
         if (ready < 0 && errno == EINTR) continue;
         if (ready == 0) {
@@ -83,17 +110,17 @@ std::string run_isolated(const std::function<std::string()>& work, double deadli
             ::kill(pid, SIGKILL);
             break;
         }
-        const ssize_t r = ::read(fds[0], buf, sizeof buf);
+        const ssize_t r = ::read(fd_, buf, sizeof buf);
         if (r < 0 && errno == EINTR) continue;
         if (r <= 0) break;
         bytes.append(buf, size_t(r));
     }
-    ::close(fds[0]);
+    ::close(fd_);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     if (timed_out) {
-        IsolatedFailure failure(fmt::format("no result within {:g} s", deadline_seconds));
+        IsolatedFailure failure(fmt::format("no result within {:g} s", deadline_seconds_));
         failure.timed_out = true;
         throw failure;
     }
@@ -104,6 +131,10 @@ std::string run_isolated(const std::function<std::string()>& work, double deadli
     if (bytes[0] == 'E') throw Error(ExitCode::BadInput, bytes.substr(1));
     if (bytes[0] == 'A') throw std::bad_alloc();
     return bytes.substr(1);
+}
+
+std::string run_isolated(const std::function<std::string()>& work, double deadline_seconds) {
+    return IsolatedRun(work, deadline_seconds).finish();
 }
 
 }  // namespace shatter

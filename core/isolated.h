@@ -9,6 +9,10 @@
 // the caller turns into a clear error or another attempt. The cost is one fork per call.
 #pragma once
 
+#include <sys/types.h>
+
+#include <chrono>
+#include <exception>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -27,5 +31,26 @@ struct IsolatedFailure : std::runtime_error {
 // the child crashed or ran past `deadline_seconds` (it is then killed). When no child can be
 // made (no pipe, no fork), `work` runs in this process.
 std::string run_isolated(const std::function<std::string()>& work, double deadline_seconds);
+
+// run_isolated begun now and ended by finish(), so that the caller works while the child does
+// (prescore simplifies the render surfaces' surface beside the tetrahedralization). The deadline
+// counts from the start; finish() returns or throws as run_isolated does, once. A run not
+// finished is killed when it goes out of scope (a result that is no longer wanted).
+class IsolatedRun {
+public:
+    IsolatedRun(const std::function<std::string()>& work, double deadline_seconds);
+    ~IsolatedRun();
+    IsolatedRun(const IsolatedRun&) = delete;
+    IsolatedRun& operator=(const IsolatedRun&) = delete;
+    std::string finish();
+
+private:
+    double deadline_seconds_;
+    std::chrono::steady_clock::time_point deadline_;
+    pid_t pid_ = -1;
+    int fd_ = -1;
+    std::string in_process_;                 // the result when no child could be made
+    std::exception_ptr in_process_error_;    // or what it threw
+};
 
 }  // namespace shatter

@@ -22,7 +22,7 @@
 #include "pipeline/process.h"
 #include "pipeline/sheets.h"
 #include "render/render.h"
-#include "simulate/workers.h"
+#include "core/workers.h"
 
 namespace shatter {
 
@@ -149,7 +149,7 @@ std::string frame_at(const BatchRunResult& run, double when) {
 BatchResult run_batch(const BatchFile& batch, const BatchOptions& options) {
     const std::string exe = options.shatter.empty() ? own_executable() : options.shatter;
     const uint32_t workers = options.workers ? options.workers : batch.workers;
-    // The runs share the cores: each simulates on its share of them (simulate/workers.h; the
+    // The runs share the cores: each simulates on its share of them (core/workers.h; the
     // result does not depend on it), unless the user's environment says otherwise.
     if (workers > 1 && !std::getenv("SHATTER_THREADS"))
         setenv("SHATTER_THREADS", std::to_string(std::max(1u, usable_cores() / workers)).c_str(), 0);

@@ -50,6 +50,9 @@ Field field_of(size_t vertices, std::vector<std::tuple<uint32_t, uint32_t, doubl
 // then sigma / 4; at the last level its inner vertices (whose tets are all its own) are its alone.
 constexpr int kHeldLevels = 3;
 
+// The most a piece's field scale changes in one round of the volume fit (a factor of e^0.4).
+constexpr double kFitStep = 0.4;
+
 // chi_p(v): the share of piece p in a Gaussian-weighted neighbourhood of v (width sigma), over
 // the tets reached from v's own through their faces (so not across a gap) whose centres lie
 // within 2 sigma, each weighted by its volume; narrower around the pieces `held` (kHeldLevels).
@@ -447,22 +450,41 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
     }
     const double sigma = settings.width * mean_tet_edge(mesh);
     std::vector<char> held(pieces, 0);
-    for (int round = 0;; ++round) {
-        const Field field = piece_field(mesh, topology, tet_piece, sigma, held);
+    std::vector<double> scale(pieces, 1.0);  // each piece's field is scale x chi
+    Field unscaled = piece_field(mesh, topology, tet_piece, sigma, held);
+    int fits = settings.fit_rounds;
+    for (;;) {
+        Field field = unscaled;
+        for (size_t i = 0; i < field.value.size(); ++i) field.value[i] *= scale[field.piece[i]];
         CrackCells cells = Arrangement(mesh, topology, tet_piece, face_kind, field, pieces).run();
         for (const std::vector<Tri>& cell : cells.triangles) cells.open += !closed(cell);
         if (cells.open > 0) return cells;
-        // A piece whose cell lost too much of its tets' volume to its neighbours (a thin one) is
-        // cut again, held one level more (kHeldLevels).
         const std::vector<Vec3> x = cells.place(mesh.vertices);
-        bool again = false;
-        for (uint32_t p = 0; p < pieces && round < kHeldLevels; ++p) {
-            double volume = 0;
-            for (const Tri& t : cells.triangles[p]) volume += x[t[0]].dot(x[t[1]].cross(x[t[2]])) / 6;
-            if (volume < settings.keep * own[p]) held[p] += 1, again = true;
+        std::vector<double> kept(pieces, 0);  // each cell's volume over its tets'
+        for (uint32_t p = 0; p < pieces; ++p) {
+            for (const Tri& t : cells.triangles[p]) kept[p] += x[t[0]].dot(x[t[1]].cross(x[t[2]])) / 6;
+            kept[p] /= own[p];
         }
+        bool again = false;
+        if (fits-- > 0) {
+            // The fit: a piece whose cell keeps more or less than its tets' volume has its field
+            // scaled by the square root of the ratio, at most kFitStep a round (a small piece's
+            // volume jumps as its field passes its neighbours').
+            for (uint32_t p = 0; p < pieces; ++p) {
+                if (std::abs(kept[p] - 1) <= settings.fit_tolerance) continue;
+                scale[p] *= std::exp(std::clamp(-0.5 * std::log(std::max(kept[p], 1e-3)), -kFitStep, kFitStep));
+                again = true;
+            }
+            if (again) continue;
+        }
+        // Then a piece whose cell still lost too much of its tets' volume to its neighbours (a
+        // thin one) is cut again, held one level more (kHeldLevels).
+        for (uint32_t p = 0; p < pieces; ++p)
+            if (kept[p] < settings.keep && held[p] < kHeldLevels) held[p] += 1, again = true;
         cells.held = size_t(std::count_if(held.begin(), held.end(), [](char c) { return c > 0; }));
+        cells.fit_rounds = size_t(settings.fit_rounds - std::max(fits, 0));
         if (!again) return cells;
+        unscaled = piece_field(mesh, topology, tet_piece, sigma, held);
     }
 }
 

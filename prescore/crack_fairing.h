@@ -18,11 +18,14 @@
 //
 // the tet clipped by the planes chi_p = chi_q, and the crack between p and q is made of the
 // polygons on those planes: planar within a tet, continuous across tets (chi is), smooth at the
-// scale of sigma. The pieces' drawn volumes move by what the smoothing moves (on the demo within
-// about 20% of the tets'); a piece that would keep less than `keep` of its tets' volume (a thin
-// one, between thicker neighbours) is cut again with the field around it smoothed over sigma / 2,
-// then sigma / 4, and last with the vertices inside it (whose tets are all its own) its alone, so
-// that its cracks stay within the tets that touch them.
+// scale of sigma. The smoothing moves volume from small and thin pieces to their neighbours (on
+// the demo two pieces kept 3% and 14% of their tets' volume), so each piece's field is then
+// scaled, chi_p -> s_p chi_p (still linear in a tet: nothing below changes), to fit its cell's
+// volume to its tets': up to `fit_rounds` rounds, each multiplying s_p by the square root of
+// (tets' volume / cell's), by at most e^0.4, for the pieces off by more than `fit_tolerance`. A
+// piece that still keeps less than `keep` of its tets' volume is cut again with the field around
+// it smoothed over sigma / 2, then sigma / 4, and last with the vertices inside it (whose tets are
+// all its own) its alone, so that its cracks stay within the tets that touch them.
 //
 // Both sides of a crack are the same points. Each point of the arrangement is named by what
 // defines it: the smallest tet-mesh simplex that holds it (a vertex, an edge, a face or a tet, by
@@ -57,8 +60,10 @@ namespace shatter {
 inline constexpr size_t kCrackFairingTetsPerPiece = 100;
 
 struct CrackFairingSettings {
-    double width = 1.5;   // sigma, the field's smoothing (unit: mean tet edges)
-    double keep = 0.75;   // least share of its tets' volume a piece's cell keeps before it is held
+    double width = 1.5;           // sigma, the field's smoothing (unit: mean tet edges)
+    int fit_rounds = 8;           // most rounds of the volume fit (0: none)
+    double fit_tolerance = 0.05;  // a cell within this share of its tets' volume is left as it is
+    double keep = 0.75;           // least share of its tets' volume a piece's cell keeps before it is held
 };
 
 // A point of the arrangement: weights over up to four tet-mesh vertices (ascending ids).
@@ -78,6 +83,7 @@ struct CrackCells {
     std::vector<std::vector<uint32_t>> across;  // per piece, per triangle: the piece on a crack's other side, else UINT32_MAX
     size_t degenerate = 0;   // points their name did not fix (placed within their tet alone; 0 on every model seen)
     size_t cut_tets = 0;     // tets shared by more than one piece's cell
+    size_t fit_rounds = 0;   // rounds of the volume fit run
     size_t held = 0;         // pieces cut again, held (`keep`)
     size_t open = 0;         // cells that do not close (a tet shared by three or more pieces can leave one
                              // open; render surfaces then keep the tet cells for every piece)

@@ -191,6 +191,20 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
         level.swap(next);
     }
 
+    // The outer faces of every piece, for the fracture vertices near them (below).
+    std::vector<TreeTriangle> outer;
+    std::vector<Vec3> outer_normal;
+    for (const RenderSurface& rs : surfaces)
+        for (size_t t = 0; t < rs.triangles.size(); ++t) {
+            if (rs.kinds[t] != FaceKind::Outer) continue;
+            const Vec3 &a = rs.vertices[rs.triangles[t][0]], &b = rs.vertices[rs.triangles[t][1]],
+                       &c = rs.vertices[rs.triangles[t][2]];
+            outer.emplace_back(tree_point(a), tree_point(b), tree_point(c));
+            outer_normal.push_back(unit_or((b - a).cross(c - a), Vec3::Zero()));
+        }
+    TriangleTree outer_tree(outer.cbegin(), outer.cend());
+    if (!outer.empty()) outer_tree.accelerate_distance_queries();
+
     for (size_t p = 0; p < surfaces.size(); ++p) {
         Builder& b = built[p];
         if (!wanted(uint32_t(p))) continue;
@@ -215,7 +229,17 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
             for (int c = 0; c < 3; ++c) {
                 x[c] = old.vertices[o[c]];
                 const auto it = rim.find(std::make_tuple(x[c].x(), x[c].y(), x[c].z()));
-                if (it != rim.end()) x[c] -= rim_inset * it->second;
+                if (it != rim.end()) {
+                    x[c] -= rim_inset * it->second;
+                } else if (rim_inset > 0 && !outer.empty()) {
+                    // A fracture vertex inside the wrap but nearer its outer faces than the rim's
+                    // inset (a crack that runs close under them) goes as deep, so that it too
+                    // stays under the input; both sides of the crack move it alike.
+                    const auto hit = outer_tree.closest_point_and_primitive(tree_point(x[c]));
+                    const Vec3 q(hit.first.x(), hit.first.y(), hit.first.z());
+                    const double d = (x[c] - q).norm();
+                    if (d < rim_inset) x[c] -= (rim_inset - d) * outer_normal[size_t(hit.second - outer.cbegin())];
+                }
             }
             b.triangle(x, {old.normals[o[0]], old.normals[o[1]], old.normals[o[2]]}, old.kinds[t]);
         }

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -136,57 +140,119 @@ std::string settings_json(const MeshSettings& mesh, const PrescoreSettings& sett
     return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);  // (names are as_utf8's)
 }
 
-void build_pieces(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity,
-                  const PrescoreSettings& settings, double diagonal) {
+// Each piece's tets, surface and whether it is connected: what the render surfaces need.
+void build_piece_shapes(Model& model, const TetTopology& topo, const std::vector<std::array<bool, 4>>* cavity) {
     const uint32_t n = static_cast<uint32_t>(model.pieces.size());
     for (uint32_t t = 0; t < model.tet_piece.size(); ++t) model.pieces[model.tet_piece[t]].tets.push_back(t);
-    CollisionSettings cs;
-    cs.max_gap = settings.collision_tolerance.resolve(diagonal);
-    cs.max_parts = settings.collision_max_parts;
-    Progress progress("pieces", n);
     for (uint32_t p = 0; p < n; ++p) {
         Piece& piece = model.pieces[p];
         piece.surface = piece_surface(model.mesh, topo, model.tet_piece, p, cavity);
-        piece.mass = mass_properties(model.mesh, piece.tets, settings.density);
-        piece.collision = collision_parts(model.mesh, piece.tets, cs);
         std::vector<char> mask(model.mesh.tets.size(), 0);
         for (uint32_t t : piece.tets) mask[t] = 1;
         int32_t components = 0;
         tet_components(topo, mask, &components);
         piece.connected = components == 1;
+    }
+}
+
+// Each piece's mass and collision parts (after build_piece_shapes).
+void build_piece_bodies(Model& model, const PrescoreSettings& settings, double diagonal) {
+    CollisionSettings cs;
+    cs.max_gap = settings.collision_tolerance.resolve(diagonal);
+    cs.max_parts = settings.collision_max_parts;
+    Progress progress("pieces", model.pieces.size());
+    for (Piece& piece : model.pieces) {
+        piece.mass = mass_properties(model.mesh, piece.tets, settings.density);
+        piece.collision = collision_parts(model.mesh, piece.tets, cs);
         progress.advance();
     }
 }
 
+std::string mesh_bytes(const TriangleMesh& mesh) {
+    ByteWriter w;
+    w.u32(uint32_t(mesh.vertices.size()));
+    for (const Vec3& v : mesh.vertices) w.vec3(v);
+    w.u32(uint32_t(mesh.triangles.size()));
+    for (const Tri& t : mesh.triangles)
+        for (uint32_t i : t) w.u32(i);
+    return std::move(w.data());
+}
+
+TriangleMesh mesh_from_bytes(std::string_view bytes) {
+    ByteReader r(bytes, "the simplified surface");
+    TriangleMesh mesh;
+    mesh.vertices.resize(r.count(24, "vertices"));
+    for (Vec3& v : mesh.vertices) v = r.finite_vec3("vertex");
+    mesh.triangles.resize(r.count(12, "triangles"));
+    for (Tri& t : mesh.triangles)
+        for (uint32_t& i : t) i = r.index(uint32_t(mesh.vertices.size()), "triangle corner");
+    return mesh;
+}
+
+// The render surfaces' first half: the surface they are cut from, simplified for drawing. A
+// surface too large for CGAL's simplification is first reduced by meshoptimizer's, here; CGAL's
+// then runs in a child process (core/isolated.h: a crash or a run past the deadline leaves the
+// pieces their tet surfaces instead of ending prescore), begun as soon as the input is read so
+// that it works beside the check and the tetrahedralization. Made for one surface and piece
+// count: the surface the tets come from may turn out another (a repair's wrap, a thickening) or
+// the pieces more (a piece per separate body), and it is then made again.
+struct SurfaceSimplification {
+    SurfaceSimplification(const TriangleMesh& surface, size_t pieces);
+    bool made_for(const TriangleMesh& s, size_t n) const {
+        return n == pieces && s.vertices == surface.vertices && s.triangles == surface.triangles;
+    }
+    TriangleMesh surface;                  // what it was begun on
+    size_t pieces = 0;                     // and for how many pieces
+    std::optional<TriangleMesh> reduced;   // meshoptimizer's first reduction (first_reduction)
+    double reduce_seconds = 0;
+    size_t at_most = 0;                    // the triangles the cut gets (render_surface_triangles)
+    std::unique_ptr<IsolatedRun> run;      // simplify_surface (none when the budget is passed)
+    const TriangleMesh& from() const { return reduced ? *reduced : surface; }
+};
+
+SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : surface(s), pieces(n) {
+    const auto start = std::chrono::steady_clock::now();
+    reduced = first_reduction(surface);
+    reduce_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (reduced && reduced->triangles.size() > kRenderSurfaceSimplifyLimit) return;
+    at_most = render_surface_triangles(pieces, from().triangles.size());
+    if (double(pieces) * double(at_most) > kRenderSurfaceWork) return;
+    // CGAL's simplification: ~20 us per triangle it removes (render_surface.h).
+    const double deadline = kRenderSurfaceSeconds + 2e-5 * double(from().triangles.size() - at_most);
+    run = std::make_unique<IsolatedRun>([this] { return mesh_bytes(simplify_surface(from(), at_most)); }, deadline);
+}
+
 // Render surfaces (prescore/render_surface.h) for every piece, from `surface` (what the tets were
 // made from) simplified to kRenderSurfaceTriangles, within kRenderSurfaceWork; over it, the
-// pieces keep their tet surfaces (a choice, noted). `own`, when given (the input, which
-// `surface` wraps), gives the outer faces instead (use_input_faces; reduced to
-// kRenderSurfaceTriangles by meshoptimizer first; not when more than kInputFaceMostTriangles
-// remain, a choice noted), drawn from both sides unless `own_closed`, the fracture faces' rims
-// moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut surface's triangles
-// as its outer faces. `fair_cracks`: the cracks between pieces faired (crack_fairing.h). One log
-// line says what was done.
-void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_size, const TriangleMesh* own,
-                         bool own_closed, double rim_inset, bool fair_cracks, PrescoreReport& report) {
+// pieces keep their tet surfaces (a choice, noted). `early`, when given, is the simplification
+// begun before the tets (used when it was made for this surface and piece count). `own`, when
+// given (the input, which `surface` wraps), gives the outer faces instead (use_input_faces;
+// reduced to kRenderSurfaceTriangles by meshoptimizer first; not when more than
+// kInputFaceMostTriangles remain, a choice noted), drawn from both sides unless `own_closed`, the
+// fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
+// surface's triangles as its outer faces. `fair_cracks`: the cracks between pieces faired
+// (crack_fairing.h). `beside` runs while the simplification finishes, before the cut (which then
+// sees what it did); not at all when no cut is made. One log line says what was done.
+void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
+                         double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset, bool fair_cracks,
+                         const std::function<void()>& beside, PrescoreReport& report) {
     const auto start = std::chrono::steady_clock::now();
-    // A surface too large for CGAL's simplification is first reduced by meshoptimizer's.
-    const std::optional<TriangleMesh> reduced = first_reduction(surface);
-    const TriangleMesh* from = &surface;
-    if (reduced) {
-        if (reduced->triangles.size() > kRenderSurfaceSimplifyLimit) {
+    if (!early || !early->made_for(surface, model.pieces.size()))
+        early = std::make_unique<SurfaceSimplification>(surface, model.pieces.size());
+    const SurfaceSimplification& simplification = *early;
+    const TriangleMesh* from = &simplification.from();
+    if (simplification.reduced) {
+        if (simplification.reduced->triangles.size() > kRenderSurfaceSimplifyLimit) {
             report.choices.note("render surfaces: none, the pieces keep their tet surfaces",
                                 fmt::format("the surface has {} triangles, and {} after a first simplification, more "
                                             "than the {} that are simplified for drawing within a few seconds; "
                                             "[prescore] render_surface = false to say so",
-                                            surface.triangles.size(), reduced->triangles.size(),
+                                            surface.triangles.size(), simplification.reduced->triangles.size(),
                                             kRenderSurfaceSimplifyLimit));
             return;
         }
         spdlog::info("render surfaces: the surface's {} triangles first reduced to {} (meshoptimizer) in {:.2f} s",
-                     surface.triangles.size(), reduced->triangles.size(),
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        from = &*reduced;
+                     surface.triangles.size(), simplification.reduced->triangles.size(), simplification.reduce_seconds);
     }
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
@@ -202,7 +268,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
         return true;
     };
     // Many pieces: the surface is simplified further, to what the cut's budget allows for them.
-    const size_t at_most = render_surface_triangles(model.pieces.size(), from->triangles.size());
+    const size_t at_most = simplification.at_most;
     if (over_budget(at_most)) return;
     if (at_most < std::min(from->triangles.size(), kRenderSurfaceTriangles))
         report.choices.note(fmt::format("render surfaces: the surface simplified to {} triangles", at_most),
@@ -211,28 +277,35 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, double tet_s
                                         "triangles; [prescore] render_surface = false draws the tet surfaces instead",
                                         model.pieces.size(), kRenderSurfaceWork / 1e6, kRenderSurfaceWork * 2e-6,
                                         size_t(kRenderSurfaceWork) / kRenderSurfaceTriangles, kRenderSurfaceTriangles));
-    // CGAL's simplification and corefinement in a child process (core/isolated.h): a crash or a
-    // cut past its deadline leaves the pieces their tet surfaces instead of ending prescore. The
-    // child sends back six counts (the simplified surface's triangles; use_input_faces' four; the
-    // input triangles it was given) and, within the budget, the model with its render surfaces
-    // (the model format carries them).
+    // CGAL's corefinement in a child process too. The child sends back six counts (the simplified
+    // surface's triangles; use_input_faces' four; the input triangles it was given) and, within
+    // the budget, the model with its render surfaces (the model format carries them).
     Model cut_model;
     std::array<uint64_t, 6> head{};
     try {
-        // CGAL's simplification: ~20 us per triangle it removes (render_surface.h); meshoptimizer's
-        // ~1 us per input triangle.
+        // While the simplification finishes (it began before the tets): `beside`, and the faired
+        // cracks' cells, which need the pieces alone.
+        beside();
+        std::optional<CrackCells> faired;
+        try {
+            if (fair_cracks) faired = faired_crack_cells(model);
+        } catch (const std::exception& e) {
+            spdlog::info("render surfaces: cracks not faired ({})", e.what());
+        }
+        const TriangleMesh cut = mesh_from_bytes(early->run->finish());
+        spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        // meshoptimizer's reduction: ~1 us per input triangle.
         const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
-                                2e-5 * double(from->triangles.size() - at_most) +
                                 (own ? 1e-6 * double(own->triangles.size()) : 0.0);
         const std::string bytes = run_isolated(
             [&] {
-                const TriangleMesh cut = simplify_surface(*from, at_most);
                 std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
                 const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
                 if (double(model.pieces.size()) * double(h[0]) > kRenderSurfaceWork) return reply();
                 Model m = model;
                 std::vector<RenderSurface> found =
-                    render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr);
+                    render_surfaces(cut, m, rs, cut.triangles.size() < from->triangles.size() ? from : nullptr, &faired);
                 if (own) {
                     const TriangleMesh drawn = reduce_surface(*own, kRenderSurfaceTriangles);
                     h[5] = drawn.triangles.size();
@@ -445,6 +518,14 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     report.scale = read.scale;
     timer.lap("load");
     const TriangleMesh& input = loaded.mesh;
+    // The render surfaces' simplification works beside the check and the tetrahedralization, on
+    // the input (made again if the tets come from another surface: a repair's wrap, a thickening;
+    // or if the pieces turn out more). With seeds = "points" the pieces are the points.
+    const size_t pieces = settings.seeds == SeedMode::Points && !settings.seed_points.empty()
+                              ? settings.seed_points.size()
+                              : size_t(settings.pieces);
+    std::unique_ptr<SurfaceSimplification> simplification;
+    if (settings.render_surface) simplification = std::make_unique<SurfaceSimplification>(input, pieces);
     TriangleMesh surface = prepare_surface(input, mesh_settings, report);
     timer.lap(report.repaired ? "check+repair" : "check");
 
@@ -499,23 +580,34 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     model.constraints = reduce_constraints(place_constraints(model.mesh, topo, model.tet_piece),
                                            settings.constraints_per_pair);
     timer.lap("constraints");
-    build_pieces(model, topo, settings.hollow ? &cavity : nullptr, settings, report.input.diagonal);
-    timer.lap("pieces");
+    build_piece_shapes(model, topo, settings.hollow ? &cavity : nullptr);
+    // The pieces' masses and collision parts are made while the render surfaces' simplification
+    // finishes.
+    bool bodies = false;
+    const auto build_bodies = [&] {
+        build_piece_bodies(model, settings, report.input.diagonal);
+        bodies = true;
+    };
     if (settings.render_surface) {
         // An alpha wrap made for the tets alone (not one that gave thin walls a thickness) is not
         // what the user modelled: the outer faces come from the input itself.
         const bool own = fit.wrapped && !fit.thickened;
-        add_render_surfaces(model, fit.surface, report.input.diagonal / report.resolution, own ? &input : nullptr,
+        add_render_surfaces(model, fit.surface, std::move(simplification), report.input.diagonal / report.resolution,
+                            own ? &input : nullptr,
                             report.input.closed() && report.input.volume > 0,
                             kInputFaceRimInset * mesh_settings.wrap_offset * report.input.diagonal,
-                            settings.crack_fairing, report);
-        timer.lap("render surfaces");
+                            settings.crack_fairing, build_bodies, report);
+        if (!bodies) build_bodies();
+        timer.lap("pieces + render surfaces");
         // A file that shows nothing beyond its shape is not read a second time (a 6-million-triangle
         // scan: 8.7 s).
         if (report.render_surfaces > 0 && !loaded.plain) {
             add_appearance(model, read.path, report.scale, read.turned, choices);
             timer.lap("appearance");
         }
+    } else {
+        build_bodies();
+        timer.lap("pieces");
     }
     report.surface = std::move(fit.surface);
     model.settings_json = settings_json(mesh_settings, settings, mesh_hash, choices, report.impact);

@@ -22,7 +22,7 @@
 // input's parts beyond it are lost (the pushed cell's own faces then show there, flat, as
 // Outer); a large one folds cells over in concave parts. It is tried at 1, 0.7, 0.5 and 0.35
 // times `margin`, keeping the first at which every cell is closed and free of
-// self-intersections (else the one with the fewest bad cells). 0.15 tet sizes suits the demo. Deterministic: one thread, output in CGAL's face order, vertices in first use.
+// self-intersections (else the one with the fewest bad cells). 0.15 tet sizes suits the demo. Deterministic: the pieces are cut on every core (core/workers.h), each on its own, output in CGAL's face order, vertices in first use.
 // docs/render.md, "Render surfaces", gives the measurements.
 #pragma once
 
@@ -31,6 +31,7 @@
 
 #include "core/geometry.h"
 #include "core/model.h"
+#include "prescore/crack_fairing.h"
 
 namespace shatter {
 
@@ -45,7 +46,7 @@ namespace shatter {
 // costs ~20 us per triangle removed (2 million to 200,000 triangles: 41 s): a surface over
 // kRenderSurfaceSimplifyLimit is first reduced to kRenderSurfaceReduced by meshoptimizer's (1.3 s
 // for those 2 million), whose touching sheets and crossings simplify_surface mends. The
-// simplification and the cut run in a child process (core/isolated.h) with a deadline of
+// simplification and the cut each run in a child process (core/isolated.h) with a deadline of
 // kRenderSurfaceSeconds plus both's expected time: a crash inside CGAL (its repair of crossings
 // is experimental) or a run past it leaves every piece its tet surface, noted as a choice.
 inline constexpr double kRenderSurfaceMargin = 0.15;          // (unit: tet sizes)
@@ -55,14 +56,19 @@ inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surfac
 inline constexpr size_t kRenderSurfaceFewest = 1000;          // fewest kept for many pieces
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are first reduced (reduce_surface)
 inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many triangles
+inline constexpr size_t kRenderSurfaceQuickFactor = 3;        // simplify_surface: meshoptimizer's down to this x the count
 
 // The triangles a surface of `surface_triangles` is cut with for `pieces` pieces: at most
 // kRenderSurfaceTriangles, fewer where that many pieces would pass kRenderSurfaceWork, but not
 // fewer than kRenderSurfaceFewest (the work is then over the budget: tet surfaces).
 size_t render_surface_triangles(size_t pieces, size_t surface_triangles);
 
-// `surface` (closed, outward) with at most `max_triangles` triangles: CGAL's edge collapse
-// (Lindstrom-Turk), deterministic. Sheets that touch along an edge or at a vertex get their own
+// `surface` (closed, outward) with at most `max_triangles` triangles: meshoptimizer's edge
+// collapse (reduce_surface) down to kRenderSurfaceQuickFactor x max_triangles, then CGAL's
+// (Lindstrom-Turk), deterministic. CGAL's costs ~20 us per triangle removed, meshoptimizer's ~1
+// us; but meshoptimizer keeps input vertices where CGAL places new ones, and all the way down it
+// misses the input by more (the demo bunny at 12,000 triangles: p99 distance 0.075% of the
+// diagonal against CGAL's 0.046%; at 3x then CGAL's 0.047%, in a third of the time). Sheets that touch along an edge or at a vertex get their own
 // copies of the shared vertices first (a border that leaves is closed with a patch); a result
 // that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when
 // already within, or when it is not a closed polygon mesh.
@@ -87,13 +93,20 @@ struct RenderSurfaceSettings {
     bool fair_cracks = true;        // cells from the tet vertices with the cracks faired (crack_fairing.h)
 };
 
+// The cells of the faired cracks between `model`'s pieces (crack_fairing.h); none when its
+// pieces have fewer than kCrackFairingTetsPerPiece tets on average (logged).
+std::optional<CrackCells> faired_crack_cells(const Model& model);
+
 // One render surface per model piece; `input` is the closed, outward surface the tets were
 // made from (the alpha wrap when prescore wrapped the input).
 // `retry`, when given, is the surface `input` was simplified from: a piece whose cut fails on
 // `input` is cut again from it (a simplified surface may cross itself where it is cut).
+// `faired`, when given, is faired_crack_cells(model), made beforehand (else it is made here,
+// when settings.fair_cracks, beside the cut's index of `input`).
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
                                            const RenderSurfaceSettings& settings,
-                                           const TriangleMesh* retry = nullptr);
+                                           const TriangleMesh* retry = nullptr,
+                                           const std::optional<CrackCells>* faired = nullptr);
 
 // An input that prescore alpha-wrapped for its tets (open, crossing itself, an assembly of
 // parts) and did not thicken: the wrap, cut as above, gives the pieces their fracture and cavity

@@ -6,6 +6,9 @@
 // the cell and takes the kind of the nearest cell face (flat).
 #include "prescore/render_surface.h"
 
+#include <algorithm>
+#include <array>
+#include <exception>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,6 +31,7 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <spdlog/spdlog.h>
 
+#include "core/workers.h"
 #include "prescore/crack_fairing.h"
 #include "prescore/tet_topology.h"
 #include "prescore/triangle_tree_cgal.h"
@@ -296,10 +300,13 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
 
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles) {
     if (surface.triangles.size() <= max_triangles) return surface;
+    // The collapses down to kRenderSurfaceQuickFactor x max_triangles are meshoptimizer's (fast;
+    // it keeps input vertices where CGAL's places new ones, so it stops short of the count).
+    const TriangleMesh quick = reduce_surface(surface, kRenderSurfaceQuickFactor * max_triangles);
     std::vector<Point> points;
-    for (const Vec3& v : surface.vertices) points.emplace_back(v.x(), v.y(), v.z());
+    for (const Vec3& v : quick.vertices) points.emplace_back(v.x(), v.y(), v.z());
     Soup soup;
-    for (const Tri& t : surface.triangles) soup.push_back({t[0], t[1], t[2]});
+    for (const Tri& t : quick.triangles) soup.push_back({t[0], t[1], t[2]});
     Mesh mesh;
     if (!soup_to_mesh(points, soup, mesh)) {
         // Sheets that touch along an edge or at a vertex (as a first reduction can leave them)
@@ -385,31 +392,51 @@ Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
 
 }  // namespace
 
-std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
-                                           const RenderSurfaceSettings& settings, const TriangleMesh* retry) {
+std::optional<CrackCells> faired_crack_cells(const Model& model) {
+    if (model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size()) {
+        spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
+                     model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
+        return std::nullopt;
+    }
     const TetTopology topo = build_topology(model.mesh);
+    return crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, cells_of(model, topo)));
+}
+
+std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
+                                           const RenderSurfaceSettings& settings, const TriangleMesh* retry,
+                                           const std::optional<CrackCells>* faired_given) {
+    const TetTopology topo = build_topology(model.mesh);
+    Workers workers(default_threads());  // the pieces' cells and cuts are independent of each other
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Vec3& v : input.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const double eps = 1e-7 * (hi - lo).norm();
-    const Cuttable first = cuttable(input, settings.crease_degrees);
-    const bool input_ok = first.ok;
-    std::optional<Cuttable> second;  // `retry`, made when first needed
-
     // Faired cracks (crack_fairing.h): the cells cut from the tets by the smoothed piece field,
     // their points placed from the tet vertices wherever those are (pushed out below), so that
     // the two sides of a crack stay one surface. Otherwise the cells are the tet surfaces.
     const std::vector<Cell> tet_cells = cells_of(model, topo);
     std::vector<Cell> cells = tet_cells;
     std::optional<CrackCells> faired;
-    const bool small = model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size();
-    if (settings.fair_cracks && small)
-        spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
-                     model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
-    if (settings.fair_cracks && !small) {
-        faired = crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, tet_cells));
-        spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} pieces "
-                      "held inside, {} cells open", faired->cut_tets, faired->points.size(), faired->degenerate,
-                      faired->held, faired->open);
+    if (settings.fair_cracks && faired_given) faired = *faired_given;
+    // The surface's index, and the faired cells when not given, one beside the other.
+    std::optional<Cuttable> made;
+    std::array<std::exception_ptr, 2> failed;
+    workers.run(2, 1, [&](size_t i) {
+        try {
+            if (i == 0) made = cuttable(input, settings.crease_degrees);
+            else if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model);
+        } catch (...) {
+            failed[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+    const Cuttable first = std::move(*made);
+    const bool input_ok = first.ok;
+    std::optional<Cuttable> second;  // `retry`, made when first needed
+    if (faired) {
+        spdlog::debug("render surfaces: cracks faired: {} tets cut, {} points ({} not fixed by their name), {} rounds "
+                      "of the volume fit, {} pieces held inside, {} cells open", faired->cut_tets, faired->points.size(),
+                      faired->degenerate, faired->fit_rounds, faired->held, faired->open);
         if (faired->open > 0) {
             // All or none: a piece on its tet faces beside a faired neighbour would gape.
             spdlog::info("render surfaces: cracks not faired ({} of {} faired cells do not close), the tet faces "
@@ -434,11 +461,10 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         std::vector<Vec3> try_pushed = placed(pushed_vertices(model.mesh.vertices, normal, factor * settings.margin));
         std::vector<Mesh> try_cell(model.pieces.size());
         std::vector<const char*> try_why(model.pieces.size(), input_ok ? nullptr : "the input is not a closed polygon mesh");
-        size_t failures = 0;
-        for (size_t p = 0; p < model.pieces.size(); ++p) {
+        workers.run(model.pieces.size(), 1, [&](size_t p) {
             if (!try_why[p]) try_cell[p] = cell_mesh(cells[p], try_pushed, nudge, &try_why[p]);
-            failures += try_why[p] != nullptr;
-        }
+        });
+        const size_t failures = size_t(std::count_if(try_why.begin(), try_why.end(), [](const char* w) { return w; }));
         if (failures < best_failures) {
             best_failures = failures;
             pushed = std::move(try_pushed), cell = std::move(try_cell), why = std::move(try_why);
@@ -447,12 +473,15 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         if (failures == 0 || !input_ok) break;
     }
 
-    std::vector<RenderSurface> out;
-    size_t fell_back = 0, retried = 0;
+    // Each piece's cut on its own (on every core), then the rare second cuts one by one (they
+    // share the full surface, made when first needed), then the results collected.
+    std::vector<Mesh> cut(model.pieces.size());
+    std::vector<const Input*> in(model.pieces.size(), first.in.get());
+    workers.run(model.pieces.size(), 1, [&](size_t p) {
+        if (!why[p]) cut[p] = cut_cell(first.whole, cell[p], &why[p]);
+    });
+    size_t retried = 0;
     for (size_t p = 0; p < model.pieces.size(); ++p) {
-        Mesh cut;
-        const Input* in = first.in.get();
-        if (!why[p]) cut = cut_cell(first.whole, cell[p], &why[p]);
         if (why[p] && retry && input_ok && std::string_view(why[p]) != "its cell is not a closed surface" &&
             std::string_view(why[p]) != "its cell self-intersects") {
             // The cut failed on `input` (a simplified surface can cross itself where the cell
@@ -460,20 +489,24 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
             if (!second) second = cuttable(*retry, settings.crease_degrees);
             spdlog::debug("render surface of piece {}: {} on the simplified surface; cut again from the full one", p, why[p]);
             why[p] = nullptr;
-            if (second->ok) cut = cut_cell(second->whole, cell[p], &why[p]);
+            if (second->ok) cut[p] = cut_cell(second->whole, cell[p], &why[p]);
             else why[p] = "the full surface is not a closed polygon mesh";
-            in = second->in.get();
+            in[p] = second->in.get();
             ++retried;
         }
-        if (!why[p]) {
-            out.push_back(collect(cut, *in, cells[p], pushed, eps));
-        } else {
-            // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
-            // neighbours' cracks still meet its own).
-            spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
-            out.push_back(flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices))));
-            ++fell_back;
-        }
+    }
+    std::vector<RenderSurface> out(model.pieces.size());
+    workers.run(model.pieces.size(), 1, [&](size_t p) {
+        if (!why[p]) out[p] = collect(cut[p], *in[p], cells[p], pushed, eps);
+    });
+    size_t fell_back = 0;
+    for (size_t p = 0; p < model.pieces.size(); ++p) {
+        if (!why[p]) continue;
+        // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
+        // neighbours' cracks still meet its own).
+        spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
+        out[p] = flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices)));
+        ++fell_back;
     }
     if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());
     if (fell_back && faired) {

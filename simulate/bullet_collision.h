@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "simulate/workers.h"
+#include "core/workers.h"
 
 namespace shatter {
 

@@ -68,7 +68,7 @@ struct WorldSetup {
     // radius of turn (its piece's radius; a projectile's shape's). 0: nothing sleeps (unit: m/s).
     double sleep_speed = 0;
     // Threads for the contact tests of pairs already in contact or near it (PieceDispatcher::
-    // workers); 0: default_threads() (simulate/workers.h). The result is the same for any number.
+    // workers); 0: default_threads() (core/workers.h). The result is the same for any number.
     unsigned threads = 0;
 };
 

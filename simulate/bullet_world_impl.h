@@ -15,7 +15,7 @@
 #include "simulate/bullet_solver.h"
 #include "simulate/bullet_world.h"
 #include "simulate/compliant_constraint.h"
-#include "simulate/workers.h"
+#include "core/workers.h"
 
 namespace shatter {
 

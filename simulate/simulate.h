@@ -27,7 +27,7 @@ struct SimulationInput {
     ObjectSettings object;
     MaterialSettings material;
     SimulateSettings simulate;
-    // Threads the step runs on (WorldSetup::threads; 0: default_threads(), simulate/workers.h):
+    // Threads the step runs on (WorldSetup::threads; 0: default_threads(), core/workers.h):
     // never changes the result.
     unsigned threads = 0;
 };

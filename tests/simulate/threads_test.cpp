@@ -1,4 +1,4 @@
-// The step's contact tests on several threads (simulate/workers.h, PieceDispatcher::workers):
+// The step's contact tests on several threads (core/workers.h, PieceDispatcher::workers):
 // a run's result does not depend on the number of threads.
 #include <gtest/gtest.h>
 #include <sched.h>
@@ -8,7 +8,7 @@
 #include "core/trajectory.h"
 #include "scenes/box_model.h"
 #include "simulate/simulate.h"
-#include "simulate/workers.h"
+#include "core/workers.h"
 
 namespace shatter {
 namespace {

@@ -1,4 +1,4 @@
-#include "simulate/workers.h"
+#include "core/workers.h"
 
 #include <sched.h>
 #include <spdlog/spdlog.h>
