@@ -62,7 +62,7 @@ nlohmann::ordered_json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 nlohmann::ordered_json GradedSeeds::record() const {
     nlohmann::ordered_json j;
     j["graded"] = !density.empty();
-    if (!density.empty()) {
+    if (!grading.empty()) {  // graded, or too gently (the ratio it would have had)
         j["ratio"] = ratio;
         j["radius_m"] = radius;
         j["damage_number"] = damage;
@@ -110,6 +110,16 @@ GradedSeeds grade_by_impact(const TetMesh& mesh, const TetTopology& topology, co
     g.auto_radius = !settings.impact_radius;
     g.ratio = settings.impact_ratio.value_or(a.ratio);
     g.radius = settings.impact_radius ? settings.impact_radius->resolve(diagonal) : a.radius;
+    if (g.auto_ratio && g.ratio < kMinAutoRatio) {
+        choices.note("seeds uniform",
+                     fmt::format("seeds = \"impact\": the object first touches the {} at {:.2f} m/s, too gently to "
+                                 "grade the seeds: the damage number rho v^2 / strength = {:.0f} kg/m^3 x ({:.2f} "
+                                 "m/s)^2 / {:g} Pa = {:.3g} gives impact_ratio {:.3g}, under {:g} (a number given "
+                                 "for impact_ratio is used as it is)",
+                                 first.with, first.normal_speed, density, first.normal_speed, material.strength,
+                                 g.damage, g.ratio, kMinAutoRatio));
+        return g;
+    }
     std::vector<Vec3> points;
     for (const Contact& c : g.grading) points.push_back(c.model_point);
     g.density = impact_density(mesh, points, g.ratio, g.radius);

@@ -42,9 +42,12 @@ std::vector<double> impact_density(const TetMesh& mesh, const std::vector<Vec3>&
 // 1,100 kg/m^3 cast (D = 1.6) gets ratio 20 and radius 0.2 of the diagonal, the values that graded
 // the bunny at 40 pieces to near / far mean volumes of 0.19 (docs/log.md). The demo's bunny, whose
 // lowest point falls 1.40 m and closes at 5.24 m/s (D = 1.51), gets 19.1 and 0.198 of the diagonal
-// (0.0636 m): 0.20 (docs/results/study.md, "Uniform and impact seeds"). A touch (D -> 0) grades
-// nothing.
+// (0.0636 m): 0.20 (docs/results/study.md, "Uniform and impact seeds"). An impact whose automatic
+// ratio is under kMinAutoRatio (D < 1 / 12: the cast dropped less than 8 cm, glass or porcelain
+// from 1.5 m, D = 0.0018) grades nothing: uniform seeds, noted (graded seeds grow by density, not
+// by tets, so a ratio near 1 would still give other pieces than uniform seeds, for no grading).
 inline constexpr double kRatioPerDamage = 12;
+inline constexpr double kMinAutoRatio = 2;
 inline constexpr double kMaxAutoRatio = 100;
 inline constexpr double kAutoRadius = 0.2;       // (unit: of the diagonal)
 inline constexpr double kReferenceDamage = 1.6;
@@ -58,7 +61,8 @@ AutoGrading auto_grading(double density, double strength, double speed, double d
 
 // seeds = "impact": the object's first contacts in the shot's scene (impact.h) and the density
 // they give each tet. Without a contact that closes (nothing hit within the horizon, or an
-// object at rest) `density` is empty: uniform seeds, noted in `choices` with the reason.
+// object at rest), or with an automatic ratio under kMinAutoRatio, `density` is empty: uniform
+// seeds, noted in `choices` with the reason.
 struct GradedSeeds {
     Impact impact;
     std::vector<Contact> grading;  // the contacts the density is graded by

@@ -47,5 +47,30 @@ TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
     EXPECT_NE(closing.find("(auto: damage number rho v^2 / strength 1.62)"), std::string::npos) << closing;
 }
 
+// The same cube in porcelain (2,400 kg/m^3, 40 MPa): D = 2400 x 2 g 1.5 / 4e7 = 0.0018, impact_ratio
+// 1 + 12 D = 1.02, too gentle to grade (prescore/graded_seeds.h): uniform seeds, and the summary
+// says where it hit and why the pieces were not graded.
+TEST(RunImpact, ACubeTooStrongToBeGradedSaysWhereItHitAndWhyNot) {
+    TempDir dir;
+    RunOptions o;
+    o.shot = SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj";
+    o.output_dir = dir.file("out");
+    o.overrides = {"material.preset=porcelain"};
+    o.stages = {Stage::Prescore, Stage::Simulate};
+    o.progress = false;
+    const RunResult r = run_shot(o);
+    ASSERT_EQ(r.exit_code, 0);
+    const auto& impact = r.summary["model"]["impact"];
+    EXPECT_FALSE(impact["graded"].get<bool>()) << impact.dump();
+    const double damage = 2400 * 2 * 9.81 * 1.5 / 4e7;
+    EXPECT_NEAR(impact["damage_number"].get<double>(), damage, 1e-5);
+    EXPECT_NEAR(impact["ratio"].get<double>(), 1 + 12 * damage, 1e-4);
+    const std::string closing = format_run_summary(r);
+    EXPECT_NE(closing.find(" m, speed 5.42 m/s, on the ground after 0.553 s; pieces not graded: uniform seeds (damage "
+                           "number rho v^2 / strength 0.00177: impact_ratio 1.02, too gentle)"),
+              std::string::npos)
+        << closing;
+}
+
 }  // namespace
 }  // namespace shatter

@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "prescore/graded_seeds.h"
 #include "prescore/tet_test_meshes.h"
@@ -250,6 +254,49 @@ TEST(GradedSeeds, ADroppedCubeIsGradedByItsOwnImpactSpeed) {
     EXPECT_EQ(given.ratio, 7);
     EXPECT_EQ(given.radius, 0.05);
     EXPECT_FALSE(given.auto_ratio || given.auto_radius);
+}
+
+// An impact too gentle to grade (graded_seeds.h, kMinAutoRatio): the automatic ratio 1 + 12 D is
+// under 2 when D = rho v^2 / strength < 1 / 12, i.e. the cast (1,100 kg/m^3, 20 kPa) dropped less
+// than h = strength / (12 rho 2 g) = 7.72 cm, and porcelain (2,400 kg/m^3, 40 MPa) from 1.5 m
+// (D = 0.0018, ratio 1.02): uniform seeds, noted, the ratio it would have had recorded; a ratio
+// given in the shot is used as it is.
+TEST(GradedSeeds, AnImpactTooGentleToGradeGivesUniformSeedsAndSaysWhy) {
+    const TetMesh mesh = test::cube_grid(4, 4, 4, 0.025);
+    auto drop = [&](double height, double density, double strength, std::optional<double> ratio, AutoChoices& choices) {
+        ObjectSettings object;
+        object.pose.position = Vec3(0, height, 0);
+        MaterialSettings material;
+        material.strength = strength;
+        material.density = density;
+        PrescoreSettings settings;
+        settings.seeds = SeedMode::Impact;
+        settings.impact_ratio = ratio;
+        return grade_by_impact(mesh, build_topology(mesh), settings, ground_only(), object, material, 0.17, choices);
+    };
+    const double threshold = 2e4 / (12 * 1100 * 2 * kG);
+    EXPECT_NEAR(threshold, 0.0772, 1e-4);
+    AutoChoices below, above, porcelain, given;
+    const GradedSeeds low = drop(0.97 * threshold, 1100, 2e4, std::nullopt, below);
+    EXPECT_TRUE(low.density.empty());
+    EXPECT_NEAR(low.ratio, 1 + 12 * (0.97 / 12), 1e-6);  // D = 0.97 of the threshold's 1 / 12
+    ASSERT_EQ(below.list.size(), 1u);
+    EXPECT_EQ(below.list[0].what, "seeds uniform");
+    EXPECT_NE(below.list[0].why.find("too gently to grade the seeds"), std::string::npos) << below.list[0].why;
+    const nlohmann::ordered_json record = low.record();
+    EXPECT_FALSE(record["graded"].get<bool>());
+    EXPECT_NEAR(record["damage_number"].get<double>(), 0.97 / 12, 1e-3);
+
+    EXPECT_FALSE(drop(1.03 * threshold, 1100, 2e4, std::nullopt, above).density.empty());
+
+    const GradedSeeds p = drop(1.5, 2400, 4e7, std::nullopt, porcelain);
+    EXPECT_TRUE(p.density.empty());
+    EXPECT_NEAR(p.damage, 2400 * 2 * kG * 1.5 / 4e7, 1e-5);
+    EXPECT_NEAR(p.ratio, 1.021, 1e-3);
+
+    const GradedSeeds g = drop(1.5, 2400, 4e7, 1.5, given);
+    EXPECT_FALSE(g.density.empty());
+    EXPECT_EQ(g.ratio, 1.5);
 }
 
 }  // namespace
