@@ -412,9 +412,13 @@ private:
         if (shot_.prescore.seeds == SeedMode::Impact && !shot_.generate) {
             inputs["scene"] = to_json(shot_.scene);
             inputs["object"] = to_json(shot_.object);
-            if (!shot_.prescore.impact_ratio || !shot_.prescore.impact_radius)  // "auto": from the material
-                inputs["material"] = {{"strength", shot_.material.strength},
-                                      {"density", shot_.material.density.value_or(shot_.prescore.density)}};
+            // The damage number (recorded, and the automatic ratio and radius) reads the material.
+            inputs["material"] = {{"strength", shot_.material.strength},
+                                  {"density", shot_.material.density.value_or(shot_.prescore.density)}};
+            json colliders = json::array();  // mesh colliders' triangles are flown against
+            for (const ColliderSettings& c : shot_.scene.colliders)
+                if (c.shape.kind == ShapeKind::Mesh) colliders.push_back(file_hash(c.shape.mesh));
+            if (!colliders.empty()) inputs["collider_meshes"] = colliders;
         }
         return inputs;
     }
