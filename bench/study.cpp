@@ -4,8 +4,8 @@
 //
 //   study [--quick] [--out DIR] [--refs DIR] [--section NAME ...] [--scene NAME ...] [--no-render]
 //
-// Sections: identities, sweeps, methods, stability, continuum, speed, smallest, reference
-// (default: all).
+// Sections: identities, sweeps, methods, stability, continuum, speed, smallest, reference, seeds
+// (default: all; --quick leaves seeds out).
 // --scene also picks the shots of smallest (beam, chain, plate, bunny, bunny_sphere: assets/).
 // --quick runs a reduced study on the small rig only, plus smallest's check of the shipped beam
 // and chain against their finest models and the continuum reference's chain up to its first
@@ -137,15 +137,18 @@ int run(int argc, char** argv) {
         opt.scenes = opt.quick ? std::vector<std::string>{"rig"}
                                : std::vector<std::string>{"rig", "beam", "plate", "chain", "bunny"};
     if (opt.quick) opt.render = false;
-    if (sections.empty())
+    if (sections.empty()) {
         sections = {"identities", "sweeps", "methods", "stability", "continuum", "speed", "smallest", "reference"};
+        if (!opt.quick) sections.insert("seeds");
+    }
     Headlines h;
     const auto t0 = std::chrono::steady_clock::now();
     using Fn = bool (*)(const Options&, Headlines&);
     const std::pair<const char*, Fn> all[] = {{"identities", section_identities}, {"sweeps", section_sweeps},
                                               {"methods", section_methods},       {"stability", section_stability},
                                               {"continuum", section_continuum},   {"speed", section_speed},
-                                              {"smallest", section_smallest},     {"reference", section_reference}};
+                                              {"smallest", section_smallest},     {"reference", section_reference},
+                                              {"seeds", section_seeds}};
     for (const auto& [name, fn] : all) {
         if (!sections.count(name)) continue;
         const auto s0 = std::chrono::steady_clock::now();

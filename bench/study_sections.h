@@ -73,5 +73,6 @@ bool section_continuum(const Options& opt, Headlines& h);
 bool section_speed(const Options& opt, Headlines& h);
 bool section_smallest(const Options& opt, Headlines& h);
 bool section_reference(const Options& opt, Headlines& h);
+bool section_seeds(const Options& opt, Headlines& h);
 
 }  // namespace shatter::study

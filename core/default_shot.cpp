@@ -17,8 +17,6 @@ density = 1100
 constraints_per_pair = 16
 collision_max_parts = 8
 seeds = "impact"
-impact_ratio = 20
-impact_radius = 0.2
 
 [object]
 position = [0, 1.5, 0]

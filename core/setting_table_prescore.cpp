@@ -46,6 +46,32 @@ void read_hollow(TomlSection& s, Shot& shot) {
     p.hollow = thickness;
 }
 
+// seed_points = [[x, y, z], ...]: metres in the model's frame (seeds = "points").
+void read_seed_points(TomlSection& s, Shot& shot) {
+    const toml::node* n = s.node("seed_points");
+    if (!n) return;
+    const char* fix = "write seed_points = [[0.05, 0.02, 0], [-0.05, 0.02, 0]] (x, y, z in m, the model's frame)";
+    const toml::array* a = n->as_array();
+    if (!a || a->empty()) s.fail(n, s.key_name("seed_points") + " must be a non-empty array of [x, y, z]", fix);
+    std::vector<std::array<double, 3>> points;
+    for (size_t i = 0; i < a->size(); ++i) {
+        const toml::node& e = *a->get(i);
+        const std::string name = fmt::format("{}[{}]", s.key_name("seed_points"), i);
+        const toml::array* p = e.as_array();
+        if (!p || p->size() != 3) s.fail(&e, name + " must be an array of 3 numbers [x, y, z]", fix);
+        std::array<double, 3> x{};
+        for (size_t c = 0; c < 3; ++c) {
+            const auto d = p->get(c)->value<double>();
+            if (!d) s.fail(p->get(c), fmt::format("{}[{}] is not a number", name, c), fix);
+            check_limits(s.where(p->get(c)), fmt::format("{}[{}]", name, c), *d, kPositionLimits, s.from_flag());
+            x[c] = *d;
+        }
+        points.push_back(x);
+    }
+    shot.prescore.seed_points = std::move(points);
+    shot.prescore.seed_points_where = s.where(n);
+}
+
 void read_mesh_path(TomlSection& s, Shot& shot) {
     std::string& path = shot.mesh.path;
     if (s.text("path", path) && !path.empty()) {
@@ -204,30 +230,49 @@ SettingsSection prescore_section() {
                     "faired cracks: the relief's wavelength")
                  .json_unless_default(),
              choice<SeedMode>("seeds", at(&Shot::prescore, &PrescoreSettings::seeds),
-                              {{"uniform", SeedMode::Uniform}, {"impact", SeedMode::Impact}},
+                              {{"uniform", SeedMode::Uniform}, {"impact", SeedMode::Impact}, {"points", SeedMode::Points}},
                               "where the seed tets go: uniform: anywhere, pieces of about one size; impact: denser "
                               "where the object first hits (a rigid flight of the shot before the split), small pieces "
-                              "there and large ones far from it; a shot without a contact falls back to uniform",
-                              "a seed placement", "use \"uniform\" or \"impact\"")
+                              "there and large ones far from it; a shot without a contact falls back to uniform; "
+                              "points: a piece from each of seed_points (pieces is then their number)",
+                              "a seed placement", "use \"uniform\", \"impact\" or \"points\"")
                  .json_unless_default()
                  .flag("--seeds"),
-             number("impact_ratio", "", at(&Shot::prescore, &PrescoreSettings::impact_ratio), kImpactRatioLimits,
-                    "impact seeds: the density of seeds at the contact over the density far from it (pieces there "
-                    "about this many times smaller)")
-                 .json_unless_default(),
-             custom("impact_radius", "length", d.impact_radius.str().c_str(), "1e-3 to 10 of the diagonal, or > 0 m",
-                    "impact seeds: the density falls off as exp(-(d / radius)^2) with the distance d from the contact",
+             optional_number("impact_ratio", "", at(&Shot::prescore, &PrescoreSettings::impact_ratio),
+                             kImpactRatioLimits,
+                             "impact seeds: the density of seeds at the contact over the density far from it (pieces "
+                             "there about this many times smaller); \"auto\": from the impact's speed and the material "
+                             "(\"Impact seeds\" below)",
+                             "\"auto\"", Unset::Omitted),
+             custom("impact_radius", "length", "\"auto\"", "1e-3 to 10 of the diagonal, or > 0 m, or \"auto\"",
+                    "impact seeds: the density falls off as exp(-(d / radius)^2) with the distance d from the "
+                    "contact; \"auto\": as impact_ratio",
                     [](TomlSection& s, Shot& shot) {
-                        read_length(s, "impact_radius", shot.prescore.impact_radius, [](const std::string& where,
-                                    const Length& l, bool from_flag) {
+                        const toml::node* n = s.node("impact_radius");
+                        if (n && n->is_string() && n->as_string()->get() == "auto") {
+                            shot.prescore.impact_radius.reset();
+                            return;
+                        }
+                        Length radius = shot.prescore.impact_radius.value_or(Length{});
+                        read_length(s, "impact_radius", radius, [](const std::string& where, const Length& l,
+                                                                    bool from_flag) {
                             check_length(where, "impact_radius", l, kImpactRadiusRelativeLimits,
                                          kImpactRadiusAbsoluteLimits, from_flag);
-                        });
+                        }, ", or impact_radius = \"auto\"");
+                        if (n) shot.prescore.impact_radius = radius;
                     })
                  .json([](const Shot& s, ojson& j) {
-                     const Length& r = s.prescore.impact_radius;
-                     const Length d = PrescoreSettings{}.impact_radius;
-                     if (r.value != d.value || r.relative != d.relative) j["impact_radius"] = r.str();
+                     if (s.prescore.impact_radius) j["impact_radius"] = s.prescore.impact_radius->str();
+                 }),
+             custom("seed_points", "m", "[]", "each -1e6 to 1e6",
+                    "seeds = \"points\": [[x, y, z], ...] in the model's frame (the mesh's coordinates at its scale, "
+                    "before [object] places it); each point's tet (or the nearest, within a tet's size) seeds one piece",
+                    read_seed_points)
+                 .json([](const Shot& s, ojson& j) {
+                     if (s.prescore.seed_points.empty()) return;
+                     ojson a = ojson::array();
+                     for (const auto& p : s.prescore.seed_points) a.push_back({p[0], p[1], p[2]});
+                     j["seed_points"] = a;
                  })},
             {}};
 }

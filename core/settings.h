@@ -3,9 +3,11 @@
 // against the limits below, with a message that names the file:line or the flag.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -65,8 +67,9 @@ inline constexpr Limits kWrapOffsetLimits{1e-6, 0.1, "of the diagonal"};
 
 // Where the flood fill's seeds go: "uniform": anywhere, pieces of about one size; "impact": denser
 // near where the object first hits (prescore/impact.h), small pieces there and large ones far
-// from it (prescore/graded_seeds.h).
-enum class SeedMode { Uniform, Impact };
+// from it (prescore/graded_seeds.h); "points": one piece from each of the shot's seed_points
+// (prescore/seed_points.h).
+enum class SeedMode { Uniform, Impact, Points };
 
 struct PrescoreSettings {
     uint32_t pieces = 10;                 // number of pieces (unit: count)
@@ -82,8 +85,12 @@ struct PrescoreSettings {
     double crack_roughness = 0;           // faired cracks' relief: its amplitude (unit: tet sizes); 0: smooth
     double crack_roughness_scale = 2;     // and its wavelength (unit: tet sizes)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go
-    double impact_ratio = 10;             // impact seeds: density at the contact over far from it (unit: 1)
-    Length impact_radius{0.25, true};     // impact seeds: fall-off radius of the density
+    // Impact seeds: the density at the contact over far from it (unit: 1), and its fall-off radius;
+    // unset: "auto", from the impact's speed and the material (prescore/graded_seeds.h).
+    std::optional<double> impact_ratio;
+    std::optional<Length> impact_radius;
+    std::vector<std::array<double, 3>> seed_points;  // seeds = "points" (unit: m, the model's frame)
+    std::string seed_points_where;        // where seed_points was given ("file:line", the flag), for messages
 };
 inline constexpr Limits kPiecesLimits{1, 1e6, "pieces"};
 inline constexpr Limits kResolutionLimits{2, 500, "cells per diagonal"};

@@ -412,6 +412,13 @@ private:
         if (shot_.prescore.seeds == SeedMode::Impact && !shot_.generate) {
             inputs["scene"] = to_json(shot_.scene);
             inputs["object"] = to_json(shot_.object);
+            // The damage number (recorded, and the automatic ratio and radius) reads the material.
+            inputs["material"] = {{"strength", shot_.material.strength},
+                                  {"density", shot_.material.density.value_or(shot_.prescore.density)}};
+            json colliders = json::array();  // mesh colliders' triangles are flown against
+            for (const ColliderSettings& c : shot_.scene.colliders)
+                if (c.shape.kind == ShapeKind::Mesh) colliders.push_back(file_hash(c.shape.mesh));
+            if (!colliders.empty()) inputs["collider_meshes"] = colliders;
         }
         return inputs;
     }
@@ -695,15 +702,27 @@ std::string format_impact(const json& impact) {
             first = &c;
             break;
         }
-    if (!impact.value("graded", false) || !first)
+    if (!first)
         return fmt::format("impact:   none that closes ({} contact{}); pieces not graded: uniform seeds\n",
                            contacts.size(), contacts.size() == 1 ? "" : "s");
     const json& p = (*first)["point_m"];
+    if (!impact.value("graded", false))
+        return fmt::format("impact:   at ({:.3f}, {:.3f}, {:.3f}) m, speed {:.2f} m/s, on the {} after {:.3f} s; pieces not "
+                           "graded: uniform seeds (damage number rho v^2 / strength {:.3g}: impact_ratio {:.3g}, too "
+                           "gentle)\n",
+                           p[0].get<double>(), p[1].get<double>(), p[2].get<double>(),
+                           (*first)["speed_m_per_s"].get<double>(), (*first)["with"].get<std::string>(),
+                           (*first)["time_s"].get<double>(), impact.value("damage_number", 0.0),
+                           impact.value("ratio", 1.0));
     return fmt::format("impact:   at ({:.3f}, {:.3f}, {:.3f}) m, speed {:.2f} m/s, on the {} after {:.3f} s; pieces graded: "
-                       "seeds {:g} times denser there, falling off over {:.3g} m\n",
+                       "seeds {:.3g} times denser there, falling off over {:.3g} m{}\n",
                        p[0].get<double>(), p[1].get<double>(), p[2].get<double>(),
                        (*first)["speed_m_per_s"].get<double>(), (*first)["with"].get<std::string>(),
-                       (*first)["time_s"].get<double>(), impact["ratio"].get<double>(), impact["radius_m"].get<double>());
+                       (*first)["time_s"].get<double>(), impact["ratio"].get<double>(), impact["radius_m"].get<double>(),
+                       impact.value("ratio_auto", false) || impact.value("radius_auto", false)
+                           ? fmt::format(" (auto: damage number rho v^2 / strength {:.3g})",
+                                         impact.value("damage_number", 0.0))
+                           : "");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace shatter {
 
@@ -156,6 +157,99 @@ std::optional<Found> first_touch(const Surface& s, const Other& o) {
     return std::nullopt;
 }
 
+// A static triangle mesh: the first time a vertex of one surface, moving with the object's
+// relative displacement, crosses a triangle of the other (object vertices against the mesh's
+// triangles, the mesh's vertices against the object's): each crossing is a root of a quadratic,
+// n . (x + e(t) - a) = 0, the displacement being x0 + v t + g t^2 / 2. Vertex-against-face contacts
+// only (an edge that first meets an edge is found when a vertex follows): the same bound as the box's.
+struct Crossing {
+    double time = std::numeric_limits<double>::infinity();
+    Vec3 point = Vec3::Zero();  // on the object, world frame at rest
+    Vec3 normal = Vec3::UnitY();
+};
+
+// The earliest t in [0, horizon] with n . (x + d t + a t^2 / 2 - p) = 0 and the point x + d t + a t^2
+// / 2 within the triangle (p, q, r); +infinity when there is none.
+double crossing_time(const Vec3& x, const Vec3& d, const Vec3& acc, const Vec3& p, const Vec3& q, const Vec3& r,
+                     const Vec3& n, double tolerance) {
+    const double c0 = n.dot(x - p), c1 = n.dot(d), c2 = 0.5 * n.dot(acc);
+    double roots[2];
+    int count = 0;
+    if (std::abs(c0) <= tolerance) {
+        roots[count++] = 0;
+    } else if (std::abs(c2) < 1e-15) {
+        if (c1 != 0) roots[count++] = -c0 / c1;
+    } else {
+        const double disc = c1 * c1 - 4 * c2 * c0;
+        if (disc >= 0) {
+            const double s = std::sqrt(disc);
+            const double q1 = -0.5 * (c1 + std::copysign(s, c1));  // stable roots
+            roots[count++] = q1 / c2;
+            if (q1 != 0) roots[count++] = c0 / q1;
+            if (count == 2 && roots[1] < roots[0]) std::swap(roots[0], roots[1]);
+        }
+    }
+    for (int i = 0; i < count; ++i) {
+        const double t = roots[i];
+        if (!(t >= 0 && t <= kImpactHorizon)) continue;
+        const Vec3 y = x + d * t + 0.5 * acc * t * t;
+        if ((closest_on_triangle(y, p, q, r) - y).norm() <= tolerance) return t;
+    }
+    return std::numeric_limits<double>::infinity();
+}
+
+// A static mesh collider's first contact with the object (impact.h): the earliest crossing of an
+// object vertex through a mesh triangle and of a mesh vertex through an object triangle, the
+// object displaced by fall(t) = v0 t + g t^2 / 2. `mesh` is in the world frame. The contact point
+// is the mean of the crossings within the tolerance's time of the first, on the object at rest.
+std::optional<Found> first_mesh_touch(const Surface& s, const TriangleMesh& mesh, const Vec3& v0, const Vec3& g) {
+    double first = std::numeric_limits<double>::infinity();
+    struct Hit {
+        double time;
+        Vec3 point, normal;
+    };
+    std::vector<Hit> hits;
+    auto unit_normal = [](const Vec3& a, const Vec3& b, const Vec3& c) { return Vec3((b - a).cross(c - a).normalized()); };
+    auto consider = [&](double t, const Vec3& point, const Vec3& normal) {
+        if (!(t <= first + 1.0)) return;  // far later than the first: not kept
+        first = std::min(first, t);
+        hits.push_back({t, point, normal});
+    };
+    for (const Tri& tri : mesh.triangles) {  // the object's vertices through the mesh's triangles
+        const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+        const Vec3 n = unit_normal(a, b, c);
+        if (!n.allFinite()) continue;
+        for (const Vec3& x : s.points)
+            if (const double t = crossing_time(x, v0, g, a, b, c, n, s.tolerance); t < kImpactHorizon) consider(t, x, n);
+    }
+    for (const Tri& tri : s.triangles) {  // the mesh's vertices through the object's triangles
+        const Vec3 &a = s.points[tri[0]], &b = s.points[tri[1]], &c = s.points[tri[2]];
+        const Vec3 n = unit_normal(a, b, c);
+        if (!n.allFinite()) continue;
+        for (const Vec3& y : mesh.vertices)
+            if (const double t = crossing_time(y, -v0, -g, a, b, c, n, s.tolerance); t < kImpactHorizon)
+                consider(t, y - v0 * t - 0.5 * g * t * t, -n);
+    }
+    if (hits.empty()) return std::nullopt;
+    const Vec3 velocity = v0 + g * first;  // the object's, against the mesh at rest
+    const double window = s.tolerance / std::max(velocity.norm(), 1e-12);
+    Found f{first, {}};
+    Vec3 sum = Vec3::Zero(), normal = Vec3::Zero();
+    int count = 0;
+    std::vector<Vec3> seen;  // a vertex on an edge crosses both triangles: counted once
+    for (const Hit& h : hits)
+        if (h.time <= first + window && std::find(seen.begin(), seen.end(), h.point) == seen.end()) {
+            seen.push_back(h.point);
+            sum += h.point, ++count;
+            // The mesh's normal there, turned to face the object as it comes.
+            normal += h.normal.dot(velocity) > 0 ? Vec3(-h.normal) : h.normal;
+        }
+    f.gap.gap = 0;
+    f.gap.point = sum / count;
+    f.gap.normal = normal.norm() > 0 ? Vec3(normal.normalized()) : Vec3(-velocity.normalized());
+    return f;
+}
+
 }  // namespace
 
 Vec3 object_origin(const std::vector<Vec3>& vertices, const ObjectSettings& object) {
@@ -180,7 +274,7 @@ std::vector<Contact> Impact::grading() const {
 }
 
 Impact find_impact(const TriangleMesh& surface, const SceneSettings& scene, const ObjectSettings& object,
-                   double tolerance) {
+                   double tolerance, const std::vector<TriangleMesh>* collider_meshes) {
     Impact impact;
     impact.spin_ignored = object.angular_velocity.norm() > 0;
     const Mat3 r = rotation_matrix(object.pose.rotation_deg);
@@ -215,12 +309,20 @@ Impact find_impact(const TriangleMesh& surface, const SceneSettings& scene, cons
         level.position = Vec3(0, scene.ground_height, 0);
         add_static("ground", plane, level);
     }
-    for (const ColliderSettings& c : scene.colliders) {
-        if (c.shape.kind == ShapeKind::Mesh) {
+    std::vector<std::pair<std::string, TriangleMesh>> meshes;  // mesh colliders, world frame
+    for (size_t i = 0; i < scene.colliders.size(); ++i) {
+        const ColliderSettings& c = scene.colliders[i];
+        const std::string name = c.name.empty() ? to_string(c.shape.kind) : c.name;
+        if (c.shape.kind != ShapeKind::Mesh) {
+            add_static(name, c.shape, c.pose);
+        } else if (!collider_meshes || i >= collider_meshes->size()) {
             ++impact.mesh_colliders_skipped;
-            continue;
+        } else {
+            TriangleMesh m = (*collider_meshes)[i];
+            const Mat3 rc = rotation_matrix(c.pose.rotation_deg);
+            for (Vec3& v : m.vertices) v = rc * v + c.pose.position;
+            meshes.emplace_back(name, std::move(m));
         }
-        add_static(c.name.empty() ? to_string(c.shape.kind) : c.name, c.shape, c.pose);
     }
     for (const KinematicSettings& k : scene.kinematic) {
         add_static(k.name.empty() ? "kinematic" : k.name, k.shape, k.pose);
@@ -256,6 +358,20 @@ Impact find_impact(const TriangleMesh& surface, const SceneSettings& scene, cons
                                   (f->time + h - std::max(0.0, f->time - h));
         c.speed = rel_velocity.norm();
         c.normal_speed = -c.normal.dot(rel_velocity);
+        impact.contacts.push_back(c);
+    }
+    for (const auto& [name, mesh] : meshes) {
+        const std::optional<Found> f = first_mesh_touch(s, mesh, v0, g);
+        if (!f) continue;
+        Contact c;
+        c.with = name;
+        c.time = f->time;
+        c.point = f->gap.point + fall(f->time);
+        c.model_point = r.transpose() * (f->gap.point - origin);
+        c.normal = f->gap.normal;
+        const Vec3 velocity = v0 + g * f->time;
+        c.speed = velocity.norm();
+        c.normal_speed = -c.normal.dot(velocity);
         impact.contacts.push_back(c);
     }
     std::stable_sort(impact.contacts.begin(), impact.contacts.end(),

@@ -4,7 +4,7 @@
 // gravity, without spin (an initial angular velocity is ignored, and noted), until its surface
 // first touches another body of the scene: the ground, a static collider (plane, sphere, box), a
 // kinematic body on its script or a projectile (which falls under the same gravity, so relative
-// to the object it moves in a straight line). Mesh colliders are not looked at.
+// to the object it moves in a straight line), or a static mesh collider (its triangles).
 //
 // Every point of a body that does not spin moves by the same displacement, so the gap between
 // the object and another body is the gap between the object at rest and the other body moved by
@@ -12,7 +12,11 @@
 // t, step to the first time the relative displacement can have closed the current gap, until
 // the gap is below a tolerance; exact for the plane and the sphere (their gaps are exact), and
 // for a box whose gap is only a bound (its vertices against the object's surface) an overshoot
-// is bisected back. Each body's first contact is reported; the earliest that closes at some
+// is bisected back. A mesh collider's first contact is found in closed form instead: the first time
+// a vertex of one surface, moving along the parabola, crosses a triangle of the other (both ways:
+// the object's vertices against the mesh's triangles and the mesh's vertices against the object's),
+// each a quadratic's root; edge-against-edge first contacts are found when a vertex follows, a
+// bound like the box's. Each body's first contact is reported; the earliest that closes at some
 // speed is the impact that grades the seeds (prescore/partition.h).
 //
 // Why here and not in simulate: stages meet only through files (docs/architecture.md), and
@@ -54,8 +58,10 @@ inline constexpr double kContactTolerance = 1e-4; // (unit: of the diagonal) a g
 
 // The first contacts of the object whose outer surface is `surface` (model frame, unit: m),
 // placed and launched by `object` in `scene`. `tolerance` (unit: m) is the gap taken as contact.
+// `collider_meshes` holds each of scene.colliders' triangles (its own frame, in metres; empty for
+// other shapes); without it mesh colliders are skipped and counted.
 Impact find_impact(const TriangleMesh& surface, const SceneSettings& scene, const ObjectSettings& object,
-                   double tolerance);
+                   double tolerance, const std::vector<TriangleMesh>* collider_meshes = nullptr);
 
 // Where the model frame's origin goes (object_translation on the surface's vertices).
 Vec3 object_origin(const std::vector<Vec3>& vertices, const ObjectSettings& object);

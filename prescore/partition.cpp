@@ -147,7 +147,58 @@ int32_t peek_next(Grower& g, const TetTopology& topology, const std::vector<uint
     return -1;
 }
 
+void grow_round_robin(std::vector<Grower>& growers, std::vector<uint32_t>& active, const TetTopology& topology,
+                      std::vector<uint32_t>& tet_piece) {
+    while (!active.empty()) {
+        size_t kept = 0;
+        for (uint32_t p : active) {
+            if (grow_one(growers[p], p, topology, tet_piece)) active[kept++] = p;
+        }
+        active.resize(kept);
+    }
+}
+
+Vec3 centroid(const TetMesh& mesh, uint32_t t) {
+    const Tet& k = mesh.tets[t];
+    return (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
+}
+
 }  // namespace
+
+Partition partition_from_seeds(const TetMesh& mesh, const TetTopology& topology, std::vector<uint32_t> seeds) {
+    assert(!seeds.empty());
+    std::sort(seeds.begin(), seeds.end());
+    assert(std::adjacent_find(seeds.begin(), seeds.end()) == seeds.end());
+    const uint32_t pieces = uint32_t(seeds.size());
+    Partition result;
+    result.seeds = seeds;
+    result.tet_piece.assign(mesh.tets.size(), kUnclaimed);
+    std::vector<Grower> growers(pieces);
+    std::vector<uint32_t> active;
+    for (uint32_t p = 0; p < pieces; ++p) {
+        result.tet_piece[seeds[p]] = p;
+        growers[p].queue.push_back(seeds[p]);
+        active.push_back(p);
+    }
+    grow_round_robin(growers, active, topology, result.tet_piece);
+    int32_t count = 0;
+    const std::vector<int32_t> component = tet_components(topology, {}, &count);
+    std::vector<uint32_t> component_piece(size_t(count), kUnclaimed);
+    for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        if (result.tet_piece[t] != kUnclaimed || component_piece[size_t(component[t])] != kUnclaimed) continue;
+        const Vec3 at = centroid(mesh, t);
+        double best = std::numeric_limits<double>::infinity();
+        for (uint32_t p = 0; p < pieces; ++p)
+            if (const double d = (centroid(mesh, seeds[p]) - at).squaredNorm(); d < best)
+                best = d, component_piece[size_t(component[t])] = p;
+        ++result.joined_components;
+    }
+    for (uint32_t t = 0; t < mesh.tets.size(); ++t)
+        if (result.tet_piece[t] == kUnclaimed) result.tet_piece[t] = component_piece[size_t(component[t])];
+    result.piece_tets.assign(pieces, 0);
+    for (uint32_t p : result.tet_piece) ++result.piece_tets[p];
+    return result;
+}
 
 Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
                     const std::vector<double>& density) {
@@ -174,13 +225,7 @@ Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t p
         active.push_back(p);
     }
     if (density.empty()) {
-        while (!active.empty()) {
-            size_t kept = 0;
-            for (uint32_t p : active) {
-                if (grow_one(growers[p], p, topology, result.tet_piece)) active[kept++] = p;
-            }
-            active.resize(kept);
-        }
+        grow_round_robin(growers, active, topology, result.tet_piece);
     } else {
         // Each turn gives a piece one credit; a tet costs its density over the lowest.
         double lowest = std::numeric_limits<double>::infinity();

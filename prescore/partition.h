@@ -36,6 +36,7 @@ struct Partition {
     std::vector<uint32_t> tet_piece;   // piece of each tet
     std::vector<uint32_t> seeds;       // seed tet of each piece, ascending
     std::vector<uint32_t> piece_tets;  // number of tets in each piece
+    uint32_t joined_components = 0;    // partition_from_seeds: components without a seed, joined to a piece
 };
 
 // Splits `mesh` (with its `topology`) into `pieces` pieces from random seeds drawn with `seed`.
@@ -45,5 +46,11 @@ struct Partition {
 // this is the uniform partition, byte for byte.
 Partition partition(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
                     const std::vector<double>& density = {});
+
+// The uniform round-robin growth from given seed tets (distinct; seeds = "points",
+// prescore/seed_points.h): one piece per seed, numbered in ascending order of its seed tet. A
+// face-connected component without a seed goes whole to the piece of the seeded tet nearest its
+// first tet's centroid (counted in joined_components).
+Partition partition_from_seeds(const TetMesh& mesh, const TetTopology& topology, std::vector<uint32_t> seeds);
 
 }  // namespace shatter

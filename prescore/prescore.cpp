@@ -40,6 +40,7 @@
 #include "prescore/pieces_ply.h"
 #include "prescore/render_surface.h"
 #include "prescore/repair.h"
+#include "prescore/seed_points.h"
 #include "prescore/tet_topology.h"
 #include "prescore/tetrahedralize.h"
 #include "scenes/paper_scenes.h"
@@ -486,6 +487,30 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices) {
     return in;
 }
 
+namespace {
+
+// seeds = "points": one piece from each of the shot's points (prescore/seed_points.h), `reach`
+// a tet's size.
+Partition partition_points(const TetMesh& mesh, const TetTopology& topology, const PrescoreSettings& settings,
+                           double reach, AutoChoices& choices) {
+    const std::string where = settings.seed_points_where.empty() ? "prescore.seed_points" : settings.seed_points_where;
+    if (settings.seed_points.empty())
+        throw_input_error(where, "prescore.seeds = \"points\" but seed_points is empty",
+                          "give seed_points = [[x, y, z], ...] (m, the model's frame), or seeds = \"uniform\"");
+    const std::vector<uint32_t> seeds = seed_tets_of_points(mesh, settings.seed_points, reach, where);
+    if (settings.pieces != seeds.size())
+        choices.note(fmt::format("pieces {} -> {}", settings.pieces, seeds.size()),
+                     "seeds = \"points\": one piece per seed point");
+    Partition part = partition_from_seeds(mesh, topology, seeds);
+    if (part.joined_components > 0)
+        choices.note(fmt::format("{} separate bodies without a seed point joined their nearest pieces",
+                                 part.joined_components),
+                     "seeds = \"points\": a body of the object that holds no point is not a piece of its own");
+    return part;
+}
+
+}  // namespace
+
 Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settings, PrescoreReport* report_out,
                const FlightScene* flight) {
     PrescoreReport local;
@@ -517,9 +542,12 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     const TriangleMesh& input = loaded.mesh;
     // The render surfaces' simplification works beside the check and the tetrahedralization, on
     // the input (made again if the tets come from another surface: a repair's wrap, a thickening;
-    // or if the pieces turn out more).
+    // or if the pieces turn out more). With seeds = "points" the pieces are the points.
+    const size_t pieces = settings.seeds == SeedMode::Points && !settings.seed_points.empty()
+                              ? settings.seed_points.size()
+                              : size_t(settings.pieces);
     std::unique_ptr<SurfaceSimplification> simplification;
-    if (settings.render_surface) simplification = std::make_unique<SurfaceSimplification>(input, settings.pieces);
+    if (settings.render_surface) simplification = std::make_unique<SurfaceSimplification>(input, pieces);
     TriangleMesh surface = prepare_surface(input, mesh_settings, report);
     timer.lap(report.repaired ? "check+repair" : "check");
 
@@ -556,14 +584,18 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
         SceneSettings none;
         none.ground = false;
         const ObjectSettings still;
+        const MaterialSettings material;
         GradedSeeds graded = grade_by_impact(model.mesh, topo, settings, flight ? flight->scene : none,
-                                             flight ? flight->object : still, report.input.diagonal, choices);
+                                             flight ? flight->object : still, flight ? flight->material : material,
+                                             report.input.diagonal, choices);
         report.impact = graded.record();
         density = std::move(graded.density);
         timer.lap("impact");
     }
-    Partition part = partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt, choices,
-                                       density);
+    Partition part = settings.seeds == SeedMode::Points
+                         ? partition_points(model.mesh, topo, settings, report.input.diagonal / report.resolution, choices)
+                         : partition_adapted(model.mesh, topo, settings.pieces, settings.seed, mesh_settings.adapt,
+                                             choices, density);
     model.tet_piece = std::move(part.tet_piece);
     model.pieces.resize(part.piece_tets.size());
     timer.lap("partition");
@@ -610,7 +642,7 @@ Model prescore_shot(const Shot& shot, PrescoreReport* report_out) {
             throw_input_error(shot.path, "the shot has neither [mesh] nor [generate]",
                               "add [mesh] with path = \"your.obj\", or [generate] with kind = \"beam\", \"plate\" or "
                               "\"chain\" (docs/shot.md)");
-        const FlightScene flight{shot.scene, shot.object};
+        const FlightScene flight{shot.scene, shot.object, shot.material};
         return prescore(shot.mesh, shot.prescore, report_out, &flight);
     }
     PrescoreReport local;

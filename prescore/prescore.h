@@ -65,6 +65,7 @@ InputMesh read_input_mesh(const MeshSettings& settings, AutoChoices& choices);
 struct FlightScene {
     const SceneSettings& scene;
     const ObjectSettings& object;
+    const MaterialSettings& material;  // its strength and density: impact_ratio and impact_radius "auto"
 };
 
 // Runs every phase; throws Error for bad input (unreadable mesh, mesh that cannot be

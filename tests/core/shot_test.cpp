@@ -135,6 +135,25 @@ TEST(ShotFile, ARenamedKeyNamesItsNewNameAndHowToWriteItsValue) {
     EXPECT_NE(m.find("colours = \"palette\""), std::string::npos) << m;
 }
 
+TEST(ShotFile, SeedPointsAreReadAsPointsAndABadOneNamesFileLineAndIndex) {
+    TempDir dir;
+    const Shot s = load_shot(dir.write("a.toml", "[prescore]\nseeds = \"points\"\nseed_points = [[0.1, 0.2, 0.3], [0, 0, -1]]\n"));
+    EXPECT_EQ(s.prescore.seeds, SeedMode::Points);
+    ASSERT_EQ(s.prescore.seed_points.size(), 2u);
+    EXPECT_EQ(s.prescore.seed_points[0][1], 0.2);
+    EXPECT_EQ(s.prescore.seed_points[1][2], -1);
+    EXPECT_NE(s.prescore.seed_points_where.find("a.toml:3"), std::string::npos);
+    EXPECT_FALSE(s.prescore.impact_ratio);  // "auto"
+    const std::string path = dir.write("b.toml", "[prescore]\nseed_points = [[0.1, 0.2, 0.3], [1, 2]]\n");
+    const std::string m = load_error(path);
+    EXPECT_NE(m.find(path + ":2"), std::string::npos) << m;
+    EXPECT_NE(m.find("prescore.seed_points[1] must be an array of 3 numbers [x, y, z]"), std::string::npos) << m;
+    EXPECT_NE(load_error(dir.write("c.toml", "[prescore]\nimpact_radius = \"wide\"\n")).find("impact_radius = \"auto\""),
+              std::string::npos);
+    EXPECT_EQ(load_shot(dir.write("d.toml", "[prescore]\nimpact_ratio = 5\nimpact_radius = \"2cm\"\n")).prescore.impact_radius->str(),
+              "0.02m");
+}
+
 TEST(ShotFile, UnknownSectionIsAnError) {
     TempDir dir;
     std::string m = load_error(dir.write("a.toml", "[mesh]\nscale = 1\n\n[prescor]\npieces = 3\n"));

@@ -18,7 +18,8 @@ TEST(RealMaterial, ThePorcelainBunnyDroppedWithTheDefaultsBreaks) {
     const Model model = prescore_shot(shot, nullptr);
     // The bunny lands at ~0.55 s; 0.4 s later the impact is over.
     const SimulationResult r = simulate(model, input_of(shot, 1.0, 0.95), "porcelain bunny");
-    // Measured: 59 of 241 joints into 3 fragments, 21.5 J stored (over the whole run).
+    // Porcelain from 1.5 m is too gentle an impact to grade the seeds (damage number 0.0018):
+    // uniform seeds. Measured: 44 of 241 joints into 3 fragments, 12.96 J stored (over the run).
     EXPECT_GT(r.breaks.size(), 20u);
     EXPECT_GE(fragments(model, r), 2u);
     // Every break gives back what it should: alpha E, in kinetic energy or held in a crack.
