@@ -541,9 +541,8 @@ TEST(GlbExport, AThousandPieceModelExportsEveryNodeAndKey) {
 // scripts/crack_creases.py (docs/render.md, "Faired cracks") reads the crack faces back from a
 // .glb as prescore made them: the same inner edges, creases and crease length per area as
 // crack_creases() counts on the model's render surfaces (float positions in the file: within 1%).
-TEST(GlbExport, TheCreaseScriptMeasuresTheCracksAsPrescoreDoes) {
-    TempDir dir;
-    // A cube in 4 pieces, its cracks the tet faces (creased).
+// A 10 cm cube prescored into 4 pieces at resolution 10 (its OBJ written into `dir`).
+Model prescored_cube(TempDir& dir, bool crack_fairing) {
     std::string cube;
     for (const auto& c : kCorners) cube += fmt::format("v {} {} {}\n", c[0], c[1], c[2]);
     for (const auto& f : kFaces) cube += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
@@ -553,9 +552,13 @@ TEST(GlbExport, TheCreaseScriptMeasuresTheCracksAsPrescoreDoes) {
     PrescoreSettings settings;
     settings.pieces = 4;
     settings.resolution = 10;
-    settings.crack_fairing = false;
-    PrescoreReport report;
-    const Model m = prescore(mesh, settings, &report);
+    settings.crack_fairing = crack_fairing;
+    return prescore(mesh, settings, nullptr);
+}
+
+TEST(GlbExport, TheCreaseScriptMeasuresTheCracksAsPrescoreDoes) {
+    TempDir dir;
+    const Model m = prescored_cube(dir, false);  // its cracks the tet faces (creased)
     export_glb(m, test_trajectory(m, kFrames, false), dir.file("r.glb"));
     const auto r = run_command({"/usr/bin/python3", SHATTER_SOURCE_DIR "/scripts/crack_creases.py", "--json", dir.file("r.glb")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -758,16 +761,7 @@ TEST(GlbExport, AnInputsVertexColoursBecomeColor0) {
 // same points: they get the same coordinates.
 TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
     TempDir dir;
-    std::string cube;
-    for (const auto& c : kCorners) cube += fmt::format("v {} {} {}\n", c[0], c[1], c[2]);
-    for (const auto& f : kFaces) cube += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
-    MeshSettings mesh;
-    mesh.path = dir.write("cube.obj", cube);
-    mesh.scale = 0.1;
-    PrescoreSettings settings;
-    settings.pieces = 4;
-    settings.resolution = 10;
-    const Model m = prescore(mesh, settings, nullptr);
+    const Model m = prescored_cube(dir, true);
     export_glb(m, test_trajectory(m, kFrames, false), dir.file("c.glb"));
     Imported g(dir.file("c.glb"));
     ASSERT_TRUE(g.scene);
