@@ -191,11 +191,12 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
         level.swap(next);
     }
 
-    // The outer faces of every piece, for the fracture vertices near them (below).
+    // The outer faces of every piece, for the fracture vertices near them (below; only when the
+    // rims move in).
     std::vector<TreeTriangle> outer;
     std::vector<Vec3> outer_normal;
     for (const RenderSurface& rs : surfaces)
-        for (size_t t = 0; t < rs.triangles.size(); ++t) {
+        for (size_t t = 0; t < rs.triangles.size() && rim_inset > 0; ++t) {
             if (rs.kinds[t] != FaceKind::Outer) continue;
             const Vec3 &a = rs.vertices[rs.triangles[t][0]], &b = rs.vertices[rs.triangles[t][1]],
                        &c = rs.vertices[rs.triangles[t][2]];
@@ -231,7 +232,7 @@ InputFacesReport use_input_faces(std::vector<RenderSurface>& surfaces, const Tri
                 const auto it = rim.find(std::make_tuple(x[c].x(), x[c].y(), x[c].z()));
                 if (it != rim.end()) {
                     x[c] -= rim_inset * it->second;
-                } else if (rim_inset > 0 && !outer.empty()) {
+                } else if (!outer.empty()) {
                     // A fracture vertex inside the wrap but nearer its outer faces than the rim's
                     // inset (a crack that runs close under them) goes as deep, so that it too
                     // stays under the input; both sides of the crack move it alike.
