@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
+#include <exception>
 #include <cstdlib>
 
 namespace shatter {
@@ -68,6 +70,19 @@ void Workers::run(size_t n, size_t chunk, const std::function<void(size_t)>& ite
     // finish their chunks: then none is left inside the loop when the next one is set up.
     open_ = false;
     done_.wait(lock, [&] { return busy_ == 0; });
+}
+
+void Workers::both(const std::function<void()>& a, const std::function<void()>& b) {
+    std::array<std::exception_ptr, 2> failed;
+    run(2, 1, [&](size_t i) {
+        try {
+            (i == 0 ? a : b)();
+        } catch (...) {
+            failed[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
 }
 
 unsigned usable_cores() {

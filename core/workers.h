@@ -27,6 +27,9 @@ public:
     // item(i) for every i in [0, n), in chunks of `chunk` taken in turn by whichever thread is
     // free; returns when all are done.
     void run(size_t n, size_t chunk, const std::function<void(size_t)>& item);
+    // a() and b() as the two items of one loop; what either throws is rethrown here once both
+    // are done (a's first).
+    void both(const std::function<void()>& a, const std::function<void()>& b);
 
 private:
     void work();

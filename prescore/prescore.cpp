@@ -11,7 +11,6 @@
 #include <memory>
 #include <optional>
 #include <string_view>
-#include <thread>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -234,8 +233,9 @@ SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : 
 // kInputFaceMostTriangles remain, a choice noted), drawn from both sides unless `own_closed`, the
 // fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
 // surface's triangles as its outer faces. `looks`: crack_fairing (the cracks between pieces
-// faired, crack_fairing.h) and their roughness, seeded by its seed. `beside` runs while the simplification finishes, before the cut (which then
-// sees what it did); not at all when no cut is made. One log line says what was done.
+// faired, crack_fairing.h) and their roughness, seeded by its seed. `beside` runs while the
+// simplification finishes, before the cut (which then sees what it did); not at all when no cut
+// is made. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
                          double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset,
                          const PrescoreSettings& looks,
@@ -290,30 +290,17 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     Model cut_model;
     std::array<uint64_t, 6> head{};
     try {
-        // While the simplification finishes (it began before the tets): `beside` on a thread of
-        // its own, and the faired cracks' cells, which need the pieces' tets and surfaces alone
-        // (`beside` sets their masses and collision parts).
+        // While the simplification finishes (it began before the tets): `beside`, and beside it
+        // the faired cracks' cells, which need the pieces' tets and surfaces alone (`beside` sets
+        // their masses and collision parts).
         std::optional<CrackCells> faired;
-        {
-            std::exception_ptr beside_failed;
-            const auto run_beside = [&] {
-                try {
-                    beside();
-                } catch (...) {
-                    beside_failed = std::current_exception();
-                }
-            };
-            std::optional<std::thread> side;
-            if (default_threads() > 1) side.emplace(run_beside);
-            else run_beside();
+        Workers(default_threads()).both(beside, [&] {
             try {
                 if (rs.fair_cracks) faired = faired_crack_cells(model);
             } catch (const std::exception& e) {
                 spdlog::info("render surfaces: cracks not faired ({})", e.what());
             }
-            if (side) side->join();
-            if (beside_failed) std::rethrow_exception(beside_failed);
-        }
+        });
         const TriangleMesh cut = mesh_from_bytes(early->run->finish());
         spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <exception>
 #include <map>
 #include <memory>
 #include <optional>
@@ -419,17 +418,10 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     if (settings.fair_cracks && faired_given) faired = *faired_given;
     // The surface's index, and the faired cells when not given, one beside the other.
     std::optional<Cuttable> made;
-    std::array<std::exception_ptr, 2> failed;
-    workers.run(2, 1, [&](size_t i) {
-        try {
-            if (i == 0) made = cuttable(input, settings.crease_degrees);
-            else if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model);
-        } catch (...) {
-            failed[i] = std::current_exception();
-        }
-    });
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
+    workers.both([&] { made = cuttable(input, settings.crease_degrees); },
+                 [&] {
+                     if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model);
+                 });
     const Cuttable first = std::move(*made);
     const bool input_ok = first.ok;
     std::optional<Cuttable> second;  // `retry`, made when first needed
