@@ -33,9 +33,7 @@ stiffen = true
 [simulate]
 duration = "auto"
 fps = 30
-substeps = "auto"
 iterations = 20
-joints = "direct"
 
 [render]
 width = 1280

@@ -187,7 +187,8 @@ struct SimulateSettings {
     double fps = 30;            // frames recorded per second (unit: 1/s)
     uint32_t substeps = 8;      // solver steps per frame: h = 1 / (fps * substeps)
     // substeps = "auto": the step chosen as the run goes (simulate/simulate.h, "The automatic
-    // step"); `substeps` is then unused.
+    // step"); `substeps` is then unused. Every shot's default (Shot, core/shot.h); a
+    // SimulationInput built in code keeps the fixed step it names.
     bool auto_substeps = false;
     uint32_t iterations = 20;   // sequential-impulse iterations per step
     JointSolve joints = JointSolve::Auto;  // "auto", "iterative" or "direct" (simulate/bullet_solver.h)

@@ -390,7 +390,7 @@ SettingsSection simulate_section() {
              number("fps", "frames/s", at(&Shot::simulate, &SimulateSettings::fps), kFpsLimits,
                     "frames recorded per second")
                  .flag("--fps"),
-             custom("substeps", "steps per frame, or \"auto\"", "8", "1 to 10000, or \"auto\"",
+             custom("substeps", "steps per frame, or \"auto\"", "\"auto\"", "1 to 10000, or \"auto\"",
                     "solver steps per frame: time step h = 1 / (fps substeps). \"auto\": each frame is cut into "
                     "blocks of at most 1/480 s, each run as one step while the joints carry less than half their "
                     "strength, in shorter steps while only their stretch (joined pieces turning) would pass half of "

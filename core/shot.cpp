@@ -57,18 +57,6 @@ void apply_shot_overrides(toml::table& root, const std::vector<std::string>& ove
 
 namespace {
 
-// A real material (kStiffMaterialModulus or more) whose step nobody chose: the automatic step and
-// direct joints.
-void step_for_stiff_material(Shot& shot) {
-    if (!shot.material.youngs_modulus || *shot.material.youngs_modulus < kStiffMaterialModulus) return;
-    shot.simulate.auto_substeps = true;
-    shot.simulate.joints = JointSolve::Direct;
-    spdlog::info("auto: [simulate] substeps = \"auto\", joints = \"direct\" (Young's modulus {:g} Pa: a real "
-                 "material's joints are too stiff for a fixed step of 1/480 s to resolve an impact; "
-                 "--set simulate.substeps=N keeps a fixed step)",
-                 *shot.material.youngs_modulus);
-}
-
 Shot read_shot(toml::table& root, const std::string& path, const std::vector<std::string>& overrides) {
     apply_shot_overrides(root, overrides);
     Shot shot;
@@ -92,9 +80,6 @@ Shot read_shot(toml::table& root, const std::string& path, const std::vector<std
         read_settings_section(settings, s, shot);
     }
     top.finish();
-    // A shot that sets neither key leaves the step to the material.
-    const toml::table* simulate = root.get_as<toml::table>("simulate");
-    if (!simulate || (!simulate->contains("substeps") && !simulate->contains("joints"))) step_for_stiff_material(shot);
     return shot;
 }
 
@@ -117,7 +102,7 @@ Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::
     root.insert_or_assign("mesh", toml::table{});
     Shot shot = read_shot(root, "", overrides);
     if (shot.mesh.path.empty()) shot.mesh.path = mesh_path;
-    return shot;  // its step is automatic and its joints direct already, whatever the material
+    return shot;
 }
 
 Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides) {

@@ -32,13 +32,14 @@ struct Shot {
     SceneSettings scene;
     ObjectSettings object;
     MaterialSettings material;
-    SimulateSettings simulate;
+    // A shot's step is automatic unless it names one: it resolves a stiff joint's impact where a
+    // fixed step would need thousands of steps a frame, and takes one step a block (1/480 s) where
+    // nothing loads the joints (docs/physics.md, "The automatic step").
+    SimulateSettings simulate{.auto_substeps = true};
     RenderSettings render;
 };
 
-// Reads and validates a shot file. The mesh path is made relative to the current directory. A
-// real material whose step neither the file nor the overrides set gets the automatic step and
-// direct joints (default_shot_for_mesh, below).
+// Reads and validates a shot file. The mesh path is made relative to the current directory.
 // `overrides` are "SECTION.KEY=VALUE" settings that replace or add keys before validation, the
 // value written as in the file (0.5, "12mm", [0, 1, 0], false; a bare word is taken as a string):
 // `shatter run --set`, and the sweeps of a batch file. Errors in them name "--set SECTION.KEY=VALUE".
@@ -56,13 +57,8 @@ bool is_shot_path(const std::string& path);
 extern const char* const kDefaultShot;
 
 // The default shot on `mesh_path` (taken relative to the current folder), with `overrides`
-// applied as load_shot applies them. Its step is automatic (substeps = "auto") and its joints
-// direct, whatever the material (docs/shot.md, "The default shot"). A shot file's real material
-// (Young's modulus of at least kStiffMaterialModulus, by a preset or the key) gets the same when
-// neither the file nor the overrides set `substeps` or `joints`: its joints are too stiff for a
-// fixed step to resolve an impact (docs/shot.md, "Material presets").
+// applied as load_shot applies them.
 Shot default_shot_for_mesh(const std::string& mesh_path, const std::vector<std::string>& overrides = {});
-inline constexpr double kStiffMaterialModulus = 1e9;  // (unit: Pa)
 
 // load_shot for a shot file (.toml), default_shot_for_mesh for anything else.
 Shot load_shot_or_mesh(const std::string& path, const std::vector<std::string>& overrides = {});

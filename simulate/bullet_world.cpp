@@ -221,7 +221,7 @@ bool BulletWorld::near_anything() const {
     // looks for contacts after a step (approach_load) finds none that a solved step would have.
     const btScalar h = btScalar(setup_.h);
     const auto sweep = [h](const btRigidBody& b, btVector3* l, btVector3* u) {
-        const btVector3 d = (b.getLinearVelocity() + b.getGravity() * h) * h;
+        const btVector3 d = (b.getLinearVelocity() + b.getGravity() * (h / 2)) * h;  // fly()'s move
         l->setMin(*l + d);
         u->setMax(*u + d);
     };
@@ -261,17 +261,21 @@ void BulletWorld::end_flight() {
     m.flight_end = time_;
 }
 
-// Bullet steps the rest of the scene, leaving out the pieces (DISABLE_SIMULATION); they move as
-// Bullet moves a free body (symplectic Euler: v += g h, then x += v h; no spin, so no turn).
+// Bullet steps the rest of the scene, leaving out the pieces (DISABLE_SIMULATION); they fall as
+// free bodies do, exactly (no spin, so no turn).
 void BulletWorld::fly() {
     Impl& m = *impl_;
     m.world.stepSimulation(btScalar(setup_.h), 0, btScalar(setup_.h));
     const btScalar h = btScalar(setup_.h);
+    // The fall is a parabola, followed exactly at any step: x += (v0 + v1) h / 2. (Bullet's update,
+    // v += g h then x += v h, runs ahead by g h t / 2: at the automatic step's 1/480 s, a plate
+    // dropped 0.48 m met the sphere a millisecond early.)
     for (const Impl::PieceBody& p : m.pieces) {
         btRigidBody& b = *p.body;
-        const btVector3 v = b.getLinearVelocity() + b.getGravity() * h;
+        const btVector3 v0 = b.getLinearVelocity();
+        const btVector3 v = v0 + b.getGravity() * h;
         btTransform t = b.getWorldTransform();
-        t.setOrigin(t.getOrigin() + v * h);
+        t.setOrigin(t.getOrigin() + (v0 + v) * (h / 2));
         b.setLinearVelocity(v);
         b.setWorldTransform(t);
         b.setInterpolationWorldTransform(t);

@@ -268,7 +268,8 @@ public:
         // gravity: a step moves a body by h v1 (symplectic Euler), so its potential energy changes
         // by -m g . h v1 while gravity's work on its motion is m g . h (v0 + v1) / 2 less the
         // impulses' share; the difference is m h g . (v1 - v0) / 2 (in free fall m |g|^2 h^2 / 2 a
-        // step; at an impact, m h g . dv / 2 for the impact's change of velocity). Of the turn: a
+        // step; at an impact, m h g . dv / 2 for the impact's change of velocity; nothing in rigid
+        // flight, which moves the pieces by h (v0 + v1) / 2, on the parabola). Of the turn: a
         // body's kinetic energy is w . I w / 2 with its inertia I in the world frame, which turns
         // with it, and Bullet's implicit gyroscopic term changes w by dw_g within the step: the
         // energy changes by w1 . (I1 - I0) w1 / 2 + wm . I0 dw_g that no impulse accounts for

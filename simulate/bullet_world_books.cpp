@@ -112,6 +112,8 @@ void BulletWorld::Impl::account_step(double h_step) {
             work.contacts += 0.5 * (double(start.linear.length2()) / double(b.getInvMass()) + double(l.dot(start.angular)));
             continue;
         }
+        // (Rigid flight moves the pieces on the parabola exactly: nothing to book.)
+        if (flying && b.getUserIndex() >= 0) continue;
         const btVector3 dv = b.getLinearVelocity() - start.linear;
         work.integration += 0.5 * h_step / double(b.getInvMass()) * double(b.getGravity().dot(dv));
         const btVector3& w1 = b.getAngularVelocity();

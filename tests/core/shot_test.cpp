@@ -85,35 +85,36 @@ TEST(ShotFile, TheDefaultShotForAMeshIsTheDemoShotWithoutItsMeshAndCamera) {
     EXPECT_EQ(load_shot_or_mesh("horse.3ds").mesh.path, "horse.3ds");
 }
 
-// The default shot takes the automatic step whatever the material: a real material's joints are
-// too stiff for a fixed step (omega h in the hundreds at 1/480 s), and the demo's weak cast
-// (E = 0.2 GPa) runs one step a block where its joints are calm. Its joints are direct. What the
-// user chooses wins.
-TEST(ShotFile, TheDefaultShotResolvesARealMaterialsJointsUnlessTheUserChoseTheStep) {
+// Every shot takes the automatic step unless it names one, whatever the material: a real
+// material's joints are too stiff for a fixed step (omega h in the hundreds at 1/480 s), and the
+// demo's weak cast (E = 0.2 GPa) runs one step a block where its joints are calm. Its joints are
+// "auto", which solves them directly at any piece count. What the user chooses wins.
+TEST(ShotFile, EveryShotTakesTheAutomaticStepAndDirectJointsUnlessItNamesThem) {
     for (const char* material : {"material.preset=porcelain", "material.youngs_modulus=1e9",
                                  "material.preset=weak_cast", "material.youngs_modulus=9.9e8"}) {
         const Shot s = default_shot_for_mesh("horse.3ds", {material});
         EXPECT_TRUE(s.simulate.auto_substeps) << material;
-        EXPECT_EQ(s.simulate.joints, JointSolve::Direct) << material;
+        EXPECT_EQ(s.simulate.joints, JointSolve::Auto) << material;
     }
     const Shot step = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.substeps=64"});
     EXPECT_FALSE(step.simulate.auto_substeps);
     EXPECT_EQ(step.simulate.substeps, 64u);
-    EXPECT_EQ(step.simulate.joints, JointSolve::Direct);
+    EXPECT_EQ(step.simulate.joints, JointSolve::Auto);
     const Shot joints = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.joints=iterative"});
     EXPECT_TRUE(joints.simulate.auto_substeps);
     EXPECT_EQ(joints.simulate.joints, JointSolve::Iterative);
     // A shot file's settings are taken as written: the chain sets its step.
     EXPECT_FALSE(load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/chain.toml").simulate.auto_substeps);
-    // A shot file that chooses neither the step nor the joint solve leaves them to its material.
+    // A shot file that chooses neither the step nor the joint solve, whatever its material.
     TempDir dir;
     const std::string file = dir.write("s.toml", "[mesh]\npath = \"m.obj\"\n[material]\npreset = \"porcelain\"\n");
     const Shot unset = load_shot(file);
     EXPECT_TRUE(unset.simulate.auto_substeps);
-    EXPECT_EQ(unset.simulate.joints, JointSolve::Direct);
+    EXPECT_EQ(unset.simulate.joints, JointSolve::Auto);
     EXPECT_FALSE(load_shot(file, {"simulate.substeps=8"}).simulate.auto_substeps);
     EXPECT_EQ(load_shot(file, {"simulate.joints=iterative"}).simulate.joints, JointSolve::Iterative);
-    EXPECT_FALSE(load_shot(file, {"material.preset=weak_cast"}).simulate.auto_substeps);
+    EXPECT_TRUE(load_shot(file, {"material.preset=weak_cast"}).simulate.auto_substeps);
+    EXPECT_TRUE(load_shot(file, {"material.youngs_modulus=1e6"}).simulate.auto_substeps);
 }
 
 TEST(ShotFile, UnknownKeyNamesFileLineAndSuggestsTheKnownKey) {

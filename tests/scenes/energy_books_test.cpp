@@ -82,14 +82,11 @@ TEST(EnergyBooks, ThePlatesBooksCloseThroughItsImpact) {
     EXPECT_LT(s.books, 1e-6 * s.stored);  // round-off: measured 2e-8
 }
 
-// The demo: the bunny falls in steps of 1/480 s, and symplectic Euler takes m |g|^2 h^2 / 2 from
-// kinetic + potential energy each step of free fall (bullet_world.h, StepWork::integration): with
-// the whole bunny's mass M, the integration column grows at M |g|^2 h / 2 per second until it
-// lands (1.2666 kg: 0.127 J/s, 0.0042 J a frame), so the books around the first break would be off
-// by at least that over the 0.1 s of flight before it without the column. Its joints are solved
-// directly, so a breaking joint's stretch holds what its force stores, k |d|^2 / 2 = |f|^2 / (2 k):
-// summed over the breaks, within 20% (measured 2.0434 J against 2.0439 J; with iterative joints
-// 5.33 J against 0.68 J).
+// The demo: the bunny falls as one body (rigid flight), on the parabola exactly, so the
+// integration column books nothing until it lands (bullet_world.h, StepWork::integration; the
+// solver's own update, x += v h, would take M |g|^2 h^2 / 2 a step of 1/480 s: 0.127 J/s for its
+// 1.2666 kg). Its joints are solved directly, so a breaking joint's stretch holds what its force
+// stores, k |d|^2 / 2 = |f|^2 / (2 k): summed over the breaks, within 20%.
 TEST(EnergyBooks, TheDemoBunnysBooksCloseThroughItsImpact) {
     const Shot shot = asset("bunny");
     const Model model = prescore_shot(shot, nullptr);
@@ -98,21 +95,15 @@ TEST(EnergyBooks, TheDemoBunnysBooksCloseThroughItsImpact) {
     const Spread s = books_around_first_break(r);
     EXPECT_LT(s.books, 1e-6 * s.stored);  // round-off: measured 7e-14 J of 2.04 J
     EXPECT_NEAR(s.removed, s.stored, 0.2 * s.stored);
-    double mass = 0;
-    for (const Piece& p : model.pieces) mass += p.mass.mass;
-    const double h = 1.0 / 480, g = shot.scene.gravity.norm();
-    const double rate = mass * g * g * h / 2;  // (unit: J/s)
     // The samples of the flight before the first break (the landing starts within its frame).
     const double t_break = r.breaks.front().time;
-    std::vector<const EnergySample*> flight;
+    size_t flight = 0;
     for (const EnergySample& e : r.energy)
-        if (e.time >= t_break - 0.1 && e.time < t_break - 1.0 / 30) flight.push_back(&e);
-    ASSERT_GE(flight.size(), 2u);
-    for (size_t i = 1; i < flight.size(); ++i)
-        EXPECT_NEAR((flight[i]->integration - flight[i - 1]->integration) / (flight[i]->time - flight[i - 1]->time),
-                    rate, 1e-6 * rate)
-            << "at " << flight[i]->time;
-    EXPECT_GT(s.without_integration, rate * (flight.back()->time - flight.front()->time));
+        if (e.time < t_break - 1.0 / 30) {
+            EXPECT_EQ(e.integration, 0.0) << "at " << e.time;
+            ++flight;
+        }
+    EXPECT_GT(flight, 10u);
 }
 
 // A real mesh with the defaults (`shatter run MESH`): glmark2-data's horse, whose fragments spin,

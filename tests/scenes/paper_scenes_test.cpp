@@ -155,22 +155,18 @@ TEST(PaperScenes, ThePlasterPlateShattersOverTheSphereAndItsCubesFlyApart) {
     const double l = model.pieces[1].mass.center.x() - model.pieces[0].mass.center.x();
     const double v = std::sqrt(2 * 9.81 * 0.48), rho = model.density;
     ASSERT_GT(v * std::sqrt(shot.material.stiffness * l * rho), 3 * shot.material.strength);
-    // What the breaks give back shows before the cubes land (about 35 ms after the first break; the
-    // ground then takes most of their energy): with the shot's kicks along each joint's load
-    // (directions = "force"), the pieces' kinetic energy 20 ms after the first break grows with
-    // every step of alpha. (It did in all 8 of 8 drops moved 1 mm sideways: docs/scenes.md.)
-    // Recorded at 300 fps, the step unchanged.
-    ASSERT_EQ(shot.simulate.substeps % 10, 0u);
-    double previous_kinetic = -1;
+    // What the breaks give back is small beside the impact: the joints store about 0.3 J at their
+    // breaks against the cubes' 2.1 to 2.4 J of kinetic energy 20 ms after the first break, which a
+    // change of alpha moves chaotically by as much (docs/scenes.md, "Impacts"). So each alpha's
+    // books balance, every middle joint breaks and the cubes part, at every alpha. Recorded at
+    // 300 fps (the automatic step's blocks are then 1/600 s).
+    ASSERT_TRUE(shot.simulate.auto_substeps);
     for (double alpha : {0.0, 0.5, 1.0, 1.5}) {
         SimulationInput in = plate_impact(shot, alpha, 0.15);
-        in.simulate.fps *= 10, in.simulate.substeps /= 10;
+        in.simulate.fps *= 10;
         const SimulationResult r = simulate(model, in, "plate");
         expect_books_balance(r, alpha);
         ASSERT_FALSE(r.breaks.empty());
-        const double kinetic = kinetic_at(r, r.breaks.front().time + 0.02);
-        EXPECT_GT(kinetic, previous_kinetic + 0.01) << "alpha " << alpha;
-        previous_kinetic = kinetic;
         for (const Constraint& c : model.constraints) {
             if (c.piece_a != 12 && c.piece_b != 12) continue;
             const size_t index = size_t(&c - model.constraints.data());
