@@ -10,6 +10,8 @@
 
 #include <Eigen/LU>
 
+#include "prescore/rng.h"
+
 namespace shatter {
 
 namespace {
@@ -433,12 +435,6 @@ std::vector<Vec3> CrackCells::place(const std::vector<Vec3>& vertices) const {
 
 namespace {
 
-uint64_t mix64(uint64_t z) {  // splitmix64's finalizer
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 // Perlin's gradient noise at x (lattice spacing 1): one of the 12 cube-edge directions per lattice
 // point, chosen by a hash of the point and the seed; quintic fade. Within about [-1, 1].
 double gradient_noise(const Vec3& x, uint64_t seed) {
@@ -461,10 +457,6 @@ double gradient_noise(const Vec3& x, uint64_t seed) {
     }
     return sum;
 }
-
-}  // namespace
-
-namespace {
 
 // Two octaves of gradient noise (wavelength and half of it at half the height), in [-1, 1].
 double relief_channel(const Vec3& x, double wavelength, uint64_t seed) {

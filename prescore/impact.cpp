@@ -162,12 +162,7 @@ std::optional<Found> first_touch(const Surface& s, const Other& o) {
 // triangles, the mesh's vertices against the object's): each crossing is a root of a quadratic,
 // n . (x + e(t) - a) = 0, the displacement being x0 + v t + g t^2 / 2. Vertex-against-face contacts
 // only (an edge that first meets an edge is found when a vertex follows): the same bound as the box's.
-struct Crossing {
-    double time = std::numeric_limits<double>::infinity();
-    Vec3 point = Vec3::Zero();  // on the object, world frame at rest
-    Vec3 normal = Vec3::UnitY();
-};
-
+//
 // The earliest t in [0, horizon] with n . (x + d t + a t^2 / 2 - p) = 0 and the point x + d t + a t^2
 // / 2 within the triangle (p, q, r); +infinity when there is none.
 double crossing_time(const Vec3& x, const Vec3& d, const Vec3& acc, const Vec3& p, const Vec3& q, const Vec3& r,

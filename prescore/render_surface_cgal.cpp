@@ -497,12 +497,14 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
         if (!why[p]) out[p] = collect(cut[p], *in[p], cells[p], pushed, eps);
     });
     size_t fell_back = 0;
+    std::optional<std::vector<Vec3>> unpushed;  // the cells' points at the tet vertices, made when first needed
     for (size_t p = 0; p < model.pieces.size(); ++p) {
         if (!why[p]) continue;
         // Its cell, flat: the tet surface, with the faired cracks when they are (so that its
         // neighbours' cracks still meet its own).
         spdlog::debug("render surface of piece {}: the tet surface ({})", p, why[p]);
-        out[p] = flat_render_surface(cell_surface(cells[p], placed(model.mesh.vertices)));
+        if (!unpushed) unpushed = placed(model.mesh.vertices);
+        out[p] = flat_render_surface(cell_surface(cells[p], *unpushed));
         ++fell_back;
     }
     if (retried) spdlog::info("render surfaces: {} of {} pieces cut from the full surface (the simplified one failed)", retried, out.size());

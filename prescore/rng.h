@@ -13,17 +13,20 @@
 
 namespace shatter {
 
+// SplitMix64's output function: 64 bits mixed so that nearby inputs give unrelated outputs (also
+// a hash of integers, as the faired cracks' relief uses it).
+inline uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
 class Rng {
 public:
     explicit Rng(uint64_t seed) : state_(seed) {}
 
     // The next 64 random bits.
-    uint64_t next_u64() {
-        uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
+    uint64_t next_u64() { return mix64(state_ += 0x9E3779B97F4A7C15ull); }
 
     // A uniform integer in [0, bound); bound must be > 0.
     uint32_t below(uint32_t bound) {

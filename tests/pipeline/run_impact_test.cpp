@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -16,14 +18,21 @@ namespace {
 
 using testing_support::TempDir;
 
-TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
-    TempDir dir;
+// A run of `shot` through prescore and simulate (the summary's model part comes with simulate)
+// into DIR/out.
+RunOptions to_simulate(const TempDir& dir, const std::string& shot, std::vector<std::string> overrides = {}) {
     RunOptions o;
-    o.shot = SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj";
+    o.shot = shot;
     o.output_dir = dir.file("out");
+    o.overrides = std::move(overrides);
     o.stages = {Stage::Prescore, Stage::Simulate};
     o.progress = false;
-    const RunResult r = run_shot(o);
+    return o;
+}
+
+TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
+    TempDir dir;
+    const RunResult r = run_shot(to_simulate(dir, SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj"));
     ASSERT_EQ(r.exit_code, 0);
     const auto& impact = r.summary["model"]["impact"];
     ASSERT_TRUE(impact["graded"].get<bool>()) << impact.dump();
@@ -54,13 +63,8 @@ TEST(RunImpact, TheSummarySaysWhereTheCubeHitAndHowThePiecesWereGraded) {
 // says where it hit and why the pieces were not graded.
 TEST(RunImpact, ACubeTooStrongToBeGradedSaysWhereItHitAndWhyNot) {
     TempDir dir;
-    RunOptions o;
-    o.shot = SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj";
-    o.output_dir = dir.file("out");
-    o.overrides = {"material.preset=porcelain"};
-    o.stages = {Stage::Prescore, Stage::Simulate};
-    o.progress = false;
-    const RunResult r = run_shot(o);
+    const RunResult r =
+        run_shot(to_simulate(dir, SHATTER_SOURCE_DIR "/tests/fixtures/cube.obj", {"material.preset=porcelain"}));
     ASSERT_EQ(r.exit_code, 0);
     const auto& impact = r.summary["model"]["impact"];
     EXPECT_FALSE(impact["graded"].get<bool>()) << impact.dump();
@@ -91,11 +95,7 @@ TEST(RunImpact, PrescoreIsOutOfDateWhenTheMeshColliderOrTheMaterialChanges) {
                      "[prescore]\npieces = 4\nresolution = 8\nrender_surface = false\nseeds = \"impact\"\n\n"
                      "[object]\nposition = [0, 1, 0]\n\n[material]\nstrength = 2e4\n\n[simulate]\nduration = 0.5\n\n"
                      "[[scene.colliders]]\nname = \"slab\"\nshape = \"mesh\"\nmesh = \"slab.obj\"\n");
-    RunOptions o;
-    o.shot = shot;
-    o.output_dir = dir.file("out");
-    o.stages = {Stage::Prescore, Stage::Simulate};  // the summary's model part comes with simulate
-    o.progress = false;
+    const RunOptions o = to_simulate(dir, shot);
     const RunResult r = run_shot(o);
     ASSERT_EQ(r.exit_code, 0);
     const auto& first = r.summary["model"]["impact"]["contacts"][0];
