@@ -23,7 +23,6 @@
 #include "core/progress.h"
 #include "core/stage_file.h"
 #include "core/utf8.h"
-#include "core/workers.h"
 #include "meshio/appearance.h"
 #include "meshio/mesh_load.h"
 #include "prescore/adapt.h"
@@ -234,8 +233,8 @@ SurfaceSimplification::SurfaceSimplification(const TriangleMesh& s, size_t n) : 
 // fracture faces' rims moved `rim_inset` in. Without `own`, a piece whose cut fails takes the cut
 // surface's triangles as its outer faces. `looks`: crack_fairing (the cracks between pieces
 // faired, crack_fairing.h) and their roughness, seeded by its seed. `beside` runs while the
-// simplification finishes, before the cut (which then sees what it did); not at all when no cut
-// is made. One log line says what was done.
+// cut works in its child (on the model as it was before: the cut must not need what `beside`
+// does); not at all when no cut is made. One log line says what was done.
 void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_ptr<SurfaceSimplification> early,
                          double tet_size, const TriangleMesh* own, bool own_closed, double rim_inset,
                          const PrescoreSettings& looks,
@@ -290,24 +289,21 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     Model cut_model;
     std::array<uint64_t, 6> head{};
     try {
-        // While the simplification finishes (it began before the tets): `beside`, and beside it
-        // the faired cracks' cells, which need the pieces' tets and surfaces alone (`beside` sets
-        // their masses and collision parts).
+        // While the simplification finishes (it began before the tets): the faired cracks' cells,
+        // which need the pieces' tets and surfaces alone.
         std::optional<CrackCells> faired;
-        Workers(default_threads()).both(beside, [&] {
-            try {
-                if (rs.fair_cracks) faired = faired_crack_cells(model);
-            } catch (const std::exception& e) {
-                spdlog::info("render surfaces: cracks not faired ({})", e.what());
-            }
-        });
+        try {
+            if (rs.fair_cracks) faired = faired_crack_cells(model);
+        } catch (const std::exception& e) {
+            spdlog::info("render surfaces: cracks not faired ({})", e.what());
+        }
         const TriangleMesh cut = mesh_from_bytes(early->run->finish());
         spdlog::debug("render surfaces: the simplification ready {:.3f} s after this stage began",
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         // meshoptimizer's reduction: ~1 us per input triangle.
         const double deadline = kRenderSurfaceSeconds + kRenderSurfaceWork * 2e-6 +
                                 (own ? 1e-6 * double(own->triangles.size()) : 0.0);
-        const std::string bytes = run_isolated(
+        IsolatedRun cutting(
             [&] {
                 std::array<uint64_t, 6> h{cut.triangles.size(), 0, 0, 0, 0, 0};
                 const auto reply = [&h] { return std::string(reinterpret_cast<const char*>(h.data()), sizeof h); };
@@ -338,6 +334,10 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
                 return reply() + encode_model(m);
             },
             deadline);
+        // The cut's child has its copy of the model: `beside` (the pieces' masses and collision
+        // parts, which the cut does not use) works on this one meanwhile.
+        beside();
+        const std::string bytes = cutting.finish();
         if (bytes.size() < sizeof head) throw IsolatedFailure("no reply");
         std::memcpy(head.data(), bytes.data(), sizeof head);
         if (over_budget(head[0])) return;
@@ -590,8 +590,7 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
                                            settings.constraints_per_pair);
     timer.lap("constraints");
     build_piece_shapes(model, topo, settings.hollow ? &cavity : nullptr);
-    // The pieces' masses and collision parts are made while the render surfaces' simplification
-    // finishes.
+    // The pieces' masses and collision parts are made while the render surfaces' cut works.
     bool bodies = false;
     const auto build_bodies = [&] {
         build_piece_bodies(model, settings, report.input.diagonal);
