@@ -1,13 +1,14 @@
 # The demo job (assets/bunny.toml) done in Blender, for scripts/demo_bench.py to time beside
 # `shatter run assets/bunny.toml`:
 #
-#   blender -b --factory-startup --python bench/blender_demo.py -- MESH OUT_DIR
+#   blender -b --factory-startup --python bench/blender_demo.py -- MESH OUT_DIR [FRAMES]
 #
 # The bunny (MESH, 0.1 m per unit as the shot scales it: 20 cm long) is cut by the Cell Fracture
 # add-on (object_fracture_cell) into 10 pieces; the pieces become active rigid bodies joined by
 # breakable fixed constraints, one per touching pair (Blender's Connect tool, pair by pair); the
-# whole drops from 1.5 m onto a passive ground plane; the rigid body cache is baked for 90 frames
-# at 30 fps; and the 90 frames are rendered at 1280x720 with the Workbench engine into
+# whole drops from 1.5 m onto a passive ground plane; the rigid body cache is baked for FRAMES
+# frames (default 90; demo_bench.py passes the frames shatter's run made, so that both jobs draw
+# as many) at 30 fps; and the frames are rendered at 1280x720 with the Workbench engine into
 # OUT_DIR/frame_NNNN.png. It prints one line "blender_demo: import S, fracture S, constraints S,
 # bake S, render S (N pieces, M constraints, F frames)" with the seconds of each phase.
 import os
@@ -18,7 +19,7 @@ import bpy
 from mathutils import Vector
 from mathutils.kdtree import KDTree
 
-FRAMES = 90             # the demo's frames (its simulation at 30 fps until the pieces rest)
+FRAMES = 90             # frames when none are given
 FPS = 30
 PIECES = 10
 SCALE = 0.1             # m per unit of the OBJ (assets/bunny.toml [mesh] scale)
@@ -106,13 +107,13 @@ def rigid_bodies(pieces):
     return constraints
 
 
-def bake(scene):
+def bake(scene, frames):
     scene.render.fps = FPS
     scene.frame_start = 1
-    scene.frame_end = FRAMES
+    scene.frame_end = frames
     world = scene.rigidbody_world
     world.point_cache.frame_start = 1
-    world.point_cache.frame_end = FRAMES
+    world.point_cache.frame_end = frames
     bpy.ops.ptcache.bake_all(bake=True)
 
 
@@ -134,9 +135,11 @@ def render(scene, out_dir):
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(argv) != 2:
-        sys.exit("usage: blender -b --factory-startup --python bench/blender_demo.py -- MESH OUT_DIR")
-    mesh, out_dir = argv
+    if len(argv) not in (2, 3) or (len(argv) == 3 and not (argv[2].isdigit() and int(argv[2]) > 0)):
+        sys.exit("usage: blender -b --factory-startup --python bench/blender_demo.py -- MESH OUT_DIR [FRAMES, "
+                 "a whole number above 0, default %d]" % FRAMES)
+    mesh, out_dir = argv[:2]
+    frames = int(argv[2]) if len(argv) == 3 else FRAMES
     os.makedirs(out_dir, exist_ok=True)
     scene = bpy.context.scene
     times = []
@@ -147,7 +150,7 @@ def main():
     start = phase(times, "fracture", start)
     constraints = rigid_bodies(pieces)
     start = phase(times, "constraints", start)
-    bake(scene)
+    bake(scene, frames)
     start = phase(times, "bake", start)
     render(scene, out_dir)
     phase(times, "render", start)

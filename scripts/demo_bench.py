@@ -6,7 +6,8 @@
 Runs `BUILD/bin/shatter run assets/bunny.toml -o FRESH --no-progress` N times (default 3), each into
 a new folder (nothing up to date, no cache), and, when `blender` is on PATH, bench/blender_demo.py
 in Blender as many times, alternating the two (shatter, Blender, shatter, ...) so that the load of
-a shared machine falls on both alike. Prints CSV to standard output, a row per run as it ends:
+a shared machine falls on both alike; each Blender run draws as many frames as the shatter run
+before it (the demo's movie ends when its pieces rest). Prints CSV to standard output, a row per run as it ends:
 the wall time of the whole command (total_s), shatter's time per stage as its summary gives it
 (stages that run beside render overlap it, so they do not add up to the total), and Blender's time
 per phase as the script prints it. Progress goes to standard error.
@@ -48,11 +49,11 @@ def run_shatter(build, run, scratch):
     return row
 
 
-def run_blender(blender, mesh, run, scratch):
+def run_blender(blender, mesh, run, scratch, frames):
     out = os.path.join(scratch, "blender-%d" % run)
     start = time.monotonic()
     r = subprocess.run([blender, "-b", "--factory-startup", "--python", os.path.join(ROOT, "bench", "blender_demo.py"),
-                        "--", mesh, out], cwd=ROOT, capture_output=True, text=True)
+                        "--", mesh, out, str(frames)], cwd=ROOT, capture_output=True, text=True)
     total = time.monotonic() - start
     line = next((l for l in r.stdout.splitlines() if l.startswith("blender_demo:")), None)
     if r.returncode != 0 or line is None:
@@ -84,12 +85,14 @@ def main():
     sys.stdout.flush()
     with tempfile.TemporaryDirectory(prefix="shatter-demo-bench-") as scratch:
         for run in range(1, args.runs + 1):
-            jobs = [("shatter", lambda: run_shatter(build, run, scratch))]
+            print("demo_bench: shatter, run %d of %d" % (run, args.runs), file=sys.stderr, flush=True)
+            ours = run_shatter(build, run, scratch)
+            writer.writerow(ours)
+            sys.stdout.flush()
             if blender:
-                jobs.append(("blender", lambda: run_blender(blender, mesh, run, scratch)))
-            for name, job in jobs:
-                print("demo_bench: %s, run %d of %d" % (name, run, args.runs), file=sys.stderr, flush=True)
-                writer.writerow(job())
+                print("demo_bench: blender, run %d of %d (%d frames)" % (run, args.runs, ours["frames"]),
+                      file=sys.stderr, flush=True)
+                writer.writerow(run_blender(blender, mesh, run, scratch, ours["frames"]))
                 sys.stdout.flush()
     return 0
 
