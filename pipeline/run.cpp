@@ -283,7 +283,11 @@ private:
             {.stage = Stage::Sheet, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
              .files = {{"", name_ + ".contact.png"}},
              .compute = [&] { write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png")); },
-             .what = "the contact sheet", .needs_frames = true},
+             .what = "the contact sheet", .needs_frames = true,
+             .compute_beside = [&] {
+                 write_contact_sheet(frames_dir(), trajectory().frames(), trajectory().fps, file(".contact.png"), {},
+                                     [&](uint32_t f) { return frame_drawn(f); });
+             }},
             {.stage = Stage::Plot, .kind = StageKind::Finishing,
              .inputs = [&] { return json{{"energy", file_hash(file(".energy.csv"))}, {"title", name_}}; },
              .files = {{"", name_ + ".energy.png"}},
@@ -516,13 +520,14 @@ private:
             if (entry.path().filename().string().rfind("frame_", 0) == 0) fs::remove(entry.path(), ec);
         write_file_atomic(key_file.string(), render_key() + "\n");
     }
-    // ---- encode, plot and export beside render
+    // ---- encode, sheet, plot and export beside render
     //
     // Started once the frames folder is ready (prepare_frames_dir: no stale frame left to read),
     // each on a thread of its own, with what they read (model, trajectory, their hashes, the render
     // key) loaded first, so that the threads share only const state, the stamps' files (one per
-    // stage) and the logger. Encode waits for each frame's file (written atomically by render's
-    // writer) until render is over. A chunk of a cluster render leaves encode to the final job.
+    // stage) and the logger. Encode and the sheet wait for each frame's file they read (written
+    // atomically by render's writer) until render is over. A chunk of a cluster render leaves them
+    // to the final job.
     struct BesideResult {
         StageReport report;
         int exit_code = 0;
@@ -539,8 +544,8 @@ private:
         trajectory_hash();
         render_key();
         render_over_ = false;
-        for (Stage s : {Stage::Encode, Stage::Plot, Stage::Export}) {
-            if (!asked(s) || (s == Stage::Encode && options_.chunks != 1)) continue;
+        for (Stage s : {Stage::Encode, Stage::Sheet, Stage::Plot, Stage::Export}) {
+            if (!asked(s) || ((s == Stage::Encode || s == Stage::Sheet) && options_.chunks != 1)) continue;
             const StageStep* step = &step_of(s);
             beside_.push_back({s, std::async(std::launch::async, [this, step] { return finish_beside_render(*step); })});
         }

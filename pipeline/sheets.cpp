@@ -106,7 +106,7 @@ std::vector<uint32_t> contact_sheet_frames(uint32_t frames, uint32_t tiles) {
 }
 
 void write_contact_sheet(const std::string& frames_dir, uint32_t frames, double fps, const std::string& png_path,
-                         const ContactSheetOptions& options) {
+                         const ContactSheetOptions& options, const std::function<bool(uint32_t frame)>& ready) {
     check_range("contact sheet columns", options.columns, 1, 64);
     check_range("contact sheet rows", options.rows, 1, 64);
     check_range("contact sheet tile_width", options.tile_width, 16, 4096);
@@ -119,7 +119,11 @@ void write_contact_sheet(const std::string& frames_dir, uint32_t frames, double 
     Image canvas;
     uint32_t th = 0;
     for (size_t i = 0; i < shown.size(); ++i) {
-        const Image frame = load_png(fmt::format("{}/frame_{:05d}.png", frames_dir, shown[i]));
+        const std::string path = fmt::format("{}/frame_{:05d}.png", frames_dir, shown[i]);
+        if (ready && !ready(shown[i]))
+            throw_input_error(path, fmt::format("frame {} of {} was not drawn", shown[i], frames),
+                              "render all frames first (shatter render)");
+        const Image frame = load_png(path);
         if (i == 0) {
             th = scaled_height(frame, tw);
             canvas = Image(options.columns * tw + (options.columns + 1) * gap,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,12 @@ struct ContactSheetOptions {
 // (frame_NNNNN.png), each labelled with its time "t = 1.25 s" (frame / fps). Tiles are
 // tile_width wide and as high as the first frame's aspect ratio makes them. Throws
 // Error(BadInput) for a missing or unreadable frame, Error(Io) when the sheet cannot be written.
+// Given `ready`, the frames need not be there yet (the sheet is made while render draws them):
+// each shown frame is read once ready(i) returns true, and ready(i) returning false (the frame will
+// never come) is a missing frame. The bytes are the same either way.
 void write_contact_sheet(const std::string& frames_dir, uint32_t frames, double fps, const std::string& png_path,
-                         const ContactSheetOptions& options = {});
+                         const ContactSheetOptions& options = {},
+                         const std::function<bool(uint32_t frame)>& ready = {});
 
 struct StripPanel {
     std::string frame_png;  // the frame to show

@@ -3,9 +3,12 @@
 // means, and the same bytes twice.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -189,6 +192,43 @@ TEST(Sheets, MissingFrameIsBadInputNamingIt) {
     }
     EXPECT_FALSE(fs::exists(tmp.file("sheet.png")));
     EXPECT_THROW(write_strip({}, tmp.file("strip.png")), Error);
+}
+
+// As `shatter run` makes the sheet beside render: the frames appear one by one, each shown frame
+// read once it is there, and the bytes are those of a sheet made after the last frame.
+TEST(Sheets, FramesTakenAsTheyAppearGiveTheBytesOfFramesThatWereAllThere) {
+    TempDir tmp;
+    write_frames(tmp.path() / "all", 8, 96, 64);
+    const ContactSheetOptions options{.columns = 2, .rows = 2, .tile_width = 48};
+    write_contact_sheet((tmp.path() / "all").string(), 8, 30.0, tmp.file("all.png"), options);
+    const fs::path later = tmp.path() / "later";
+    fs::create_directories(later);
+    std::atomic<uint32_t> written{0};
+    std::thread render([&] {
+        for (uint32_t i = 0; i < 8; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            fs::copy_file(tmp.path() / "all" / fmt::format("frame_{:05d}.png", i), later / fmt::format("frame_{:05d}.png", i));
+            written = i + 1;
+        }
+    });
+    std::vector<uint32_t> asked;
+    write_contact_sheet(later.string(), 8, 30.0, tmp.file("later.png"), options, [&](uint32_t f) {
+        asked.push_back(f);
+        while (written <= f) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        return true;
+    });
+    render.join();
+    EXPECT_EQ(asked, contact_sheet_frames(8, 4));  // the shown frames, in order, each once
+    EXPECT_EQ(slurp(tmp.file("later.png")), slurp(tmp.file("all.png")));
+    // A shown frame that never comes (its render failed): bad input naming it, no sheet.
+    try {
+        write_contact_sheet(later.string(), 8, 30.0, tmp.file("never.png"), options, [](uint32_t f) { return f < 7; });
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("frame_00007.png"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(tmp.file("never.png")));
 }
 
 }  // namespace
