@@ -33,6 +33,12 @@ inline double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
     return (b - a).cross(c - a).dot(d - a) / 6.0;
 }
 
+// The centroid of tet t of `mesh`: the mean of its four vertices.
+inline Vec3 tet_centroid(const TetMesh& mesh, uint32_t t) {
+    const Tet& k = mesh.tets[t];
+    return (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
+}
+
 // The four faces of a positively oriented tet; face i is opposite vertex i and is ordered so
 // that its normal points out of the tet.
 constexpr std::array<std::array<int, 3>, 4> kTetFaces = {{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};

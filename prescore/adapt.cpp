@@ -258,11 +258,6 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
 
 namespace {
 
-Vec3 centroid(const TetMesh& m, uint32_t t) {
-    const Tet& k = m.tets[t];
-    return (m.vertices[k[0]] + m.vertices[k[1]] + m.vertices[k[2]] + m.vertices[k[3]]) / 4;
-}
-
 }  // namespace
 
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
@@ -328,7 +323,7 @@ Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, ui
     std::vector<Vec3> cluster_centroid(size_t(count), Vec3::Zero());
     std::vector<double> cluster_tets(size_t(count), 0.0);
     for (uint32_t t : sliver_tets) {
-        cluster_centroid[size_t(cluster[t])] += centroid(mesh, t);
+        cluster_centroid[size_t(cluster[t])] += tet_centroid(mesh, t);
         cluster_tets[size_t(cluster[t])] += 1;
     }
     std::vector<uint32_t> cluster_piece(size_t(count), 0);
@@ -337,7 +332,7 @@ Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, ui
         const Vec3 at = cluster_centroid[size_t(c)] / cluster_tets[size_t(c)];
         double best = std::numeric_limits<double>::infinity();
         for (size_t i = 0; i < kept_index.size(); ++i) {
-            const double d = (centroid(mesh, kept_index[i]) - at).squaredNorm();
+            const double d = (tet_centroid(mesh, kept_index[i]) - at).squaredNorm();
             if (d < best) best = d, cluster_piece[size_t(c)] = inner.tet_piece[i];
         }
     }

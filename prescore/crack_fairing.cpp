@@ -10,7 +10,7 @@
 
 #include <Eigen/LU>
 
-#include "prescore/rng.h"
+#include "core/rng.h"
 
 namespace shatter {
 
@@ -68,7 +68,7 @@ Field piece_field(const TetMesh& mesh, const TetTopology& topo, const std::vecto
     std::vector<double> volume(mesh.tets.size());
     for (size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& k = mesh.tets[t];
-        centre[t] = (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
+        centre[t] = tet_centroid(mesh, uint32_t(t));
         volume[t] = tet_volume(mesh.vertices[k[0]], mesh.vertices[k[1]], mesh.vertices[k[2]], mesh.vertices[k[3]]);
     }
     std::vector<std::tuple<uint32_t, uint32_t, double>> entries;

@@ -19,8 +19,8 @@ std::vector<double> impact_density(const TetMesh& mesh, const std::vector<Vec3>&
     assert(!contacts.empty() && radius > 0 && ratio >= 1);
     std::vector<double> w;
     w.reserve(mesh.tets.size());
-    for (const Tet& k : mesh.tets) {
-        const Vec3 c = (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
+    for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        const Vec3 c = tet_centroid(mesh, t);
         double d2 = std::numeric_limits<double>::infinity();
         for (const Vec3& p : contacts) d2 = std::min(d2, (c - p).squaredNorm());
         w.push_back(1 + (ratio - 1) * std::exp(-d2 / (radius * radius)));

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "prescore/rng.h"
+#include "core/rng.h"
 
 namespace shatter {
 
@@ -158,11 +158,6 @@ void grow_round_robin(std::vector<Grower>& growers, std::vector<uint32_t>& activ
     }
 }
 
-Vec3 centroid(const TetMesh& mesh, uint32_t t) {
-    const Tet& k = mesh.tets[t];
-    return (mesh.vertices[k[0]] + mesh.vertices[k[1]] + mesh.vertices[k[2]] + mesh.vertices[k[3]]) / 4;
-}
-
 }  // namespace
 
 Partition partition_from_seeds(const TetMesh& mesh, const TetTopology& topology, std::vector<uint32_t> seeds) {
@@ -186,10 +181,10 @@ Partition partition_from_seeds(const TetMesh& mesh, const TetTopology& topology,
     std::vector<uint32_t> component_piece(size_t(count), kUnclaimed);
     for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
         if (result.tet_piece[t] != kUnclaimed || component_piece[size_t(component[t])] != kUnclaimed) continue;
-        const Vec3 at = centroid(mesh, t);
+        const Vec3 at = tet_centroid(mesh, t);
         double best = std::numeric_limits<double>::infinity();
         for (uint32_t p = 0; p < pieces; ++p)
-            if (const double d = (centroid(mesh, seeds[p]) - at).squaredNorm(); d < best)
+            if (const double d = (tet_centroid(mesh, seeds[p]) - at).squaredNorm(); d < best)
                 best = d, component_piece[size_t(component[t])] = p;
         ++result.joined_components;
     }

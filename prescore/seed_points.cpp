@@ -37,7 +37,7 @@ std::vector<uint32_t> seed_tets_of_points(const TetMesh& mesh, const std::vector
             const Vec3 &a = mesh.vertices[k[0]], &b = mesh.vertices[k[1]], &c = mesh.vertices[k[2]],
                        &d = mesh.vertices[k[3]];
             if (inside(p, a, b, c, d)) found = t;
-            const double d2 = ((a + b + c + d) / 4 - p).squaredNorm();
+            const double d2 = (tet_centroid(mesh, t) - p).squaredNorm();
             if (d2 < best) best = d2, nearest = t;
         }
         if (found == UINT32_MAX && std::sqrt(best) > reach)

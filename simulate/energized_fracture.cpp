@@ -3,18 +3,11 @@
 #include <cassert>
 #include <cmath>
 
+#include "core/rng.h"
+
 namespace shatter {
 
 namespace {
-
-uint64_t splitmix64(uint64_t& state) {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-double unit_double(uint64_t& state) { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; }
 
 // A uniformly random unit vector orthogonal to n (|n| > 0), from the key.
 Vec3 random_orthogonal(const Vec3& n, uint64_t key) {
@@ -22,8 +15,7 @@ Vec3 random_orthogonal(const Vec3& n, uint64_t key) {
     const Vec3 helper = std::abs(u.x()) < 0.6 ? Vec3::UnitX() : (std::abs(u.y()) < 0.6 ? Vec3::UnitY() : Vec3::UnitZ());
     const Vec3 e1 = u.cross(helper).normalized();
     const Vec3 e2 = u.cross(e1);
-    uint64_t state = key;
-    const double angle = 2.0 * M_PI * unit_double(state);
+    const double angle = 2.0 * M_PI * Rng(key).uniform();
     return std::cos(angle) * e1 + std::sin(angle) * e2;
 }
 

@@ -1,7 +1,7 @@
 // A tiny seeded random number generator whose output is the same on every platform and standard
 // library. std::uniform_int_distribution and friends are implementation-defined (libstdc++ and
-// libc++ give different numbers for the same engine state), so prescore draws its random numbers
-// here instead.
+// libc++ give different numbers for the same engine state), so shatter draws its random numbers
+// here instead (prescore's seeds and crack relief, simulate's kick directions).
 //
 // Engine: SplitMix64 (Steele, Lea, Flood, "Fast splittable pseudorandom number generators",
 // OOPSLA 2014); bounded integers by Lemire's multiply-shift with rejection ("Fast random integer
