@@ -95,9 +95,10 @@ int run(const RenderFlags& f) {
     RenderOptions options;
     options.size_source = f.size ? "--size" : (f.shot.empty() ? "the default size" : f.shot + ": [render] width, height");
     const RenderReport r = render_frames(scene, settings, range, f.output, options);
-    fmt::print("render: {} frames ({}..{}) of {}x{} in {:.2f}s, {:.1f} frames/s ({})\n", r.frames, range.first,
+    fmt::print("render: {} frames ({}..{}) of {}x{} in {:.2f}s, {:.1f} frames/s ({}){}\n", r.frames, range.first,
                range.end - 1, settings.width, settings.height, r.seconds, r.frames / std::max(r.seconds, 1e-9),
-               r.renderer);
+               r.renderer,
+               r.repeated ? fmt::format("; {} the same picture as the frame before, written again undrawn", r.repeated) : "");
     fmt::print("time:   draw {:.3f}s, readback {:.3f}s (main thread); PNG encode {:.3f}s, write {:.3f}s (writer thread)\n",
                r.draw_seconds, r.readback_seconds, r.encode_seconds, r.write_seconds);
     fmt::print("wrote:  {}/{} .. {}\n", f.output, frame_file_name(range.first), frame_file_name(range.end - 1));

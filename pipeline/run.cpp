@@ -619,8 +619,11 @@ private:
         const FrameRange range{first, end};
         if (range.first < range.end) {
             const RenderReport rr = render_frames(scene, shot_.render, range, frames_dir(), ro);
-            spdlog::info("render: {} of frames {}..{} drawn ({} already there)", rr.frames, range.first, range.end - 1,
-                         range.end - range.first - rr.frames);
+            spdlog::info("render: {} of frames {}..{} drawn ({} already there{})", rr.frames, range.first, range.end - 1,
+                         range.end - range.first - rr.frames,
+                         rr.repeated ? fmt::format("; {} the same picture as the frame before, its file written again",
+                                                   rr.repeated)
+                                     : "");
         }
         const CameraCoverage cover = camera_coverage(scene, shot_.render);
         spdlog::info("render: camera {}: {:.0f}% of the pieces in view in the first frame, at least {:.0f}% in "

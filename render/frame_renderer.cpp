@@ -1,6 +1,7 @@
 #include "render/frame_renderer.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cassert>
 #include <cmath>
 #include <chrono>
@@ -311,6 +312,21 @@ PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
     auto clamp = [](float v, int hi) { return int(std::clamp(v, 0.0f, float(hi))); };
     return {clamp(std::floor(x0 - kMargin), w), clamp(std::floor(y0 - kMargin), h), clamp(std::ceil(x1 + kMargin), w),
             clamp(std::ceil(y1 + kMargin), h)};
+}
+
+bool FrameRenderer::same_picture(uint32_t a, uint32_t b) const {
+    const auto same = [](const auto& x, const auto& y) { return std::memcmp(x.data(), y.data(), sizeof(float) * x.size()) == 0; };
+    if (camera_moves()) {
+        const Camera &x = camera(a), &y = camera(b);
+        if (!same(x.position, y.position) || !same(x.view, y.view) || !same(x.projection, y.projection)) return false;
+    }
+    for (const Item& item : items_) {
+        if (item.body < 0) continue;
+        const BodyPose& p = scene_.trajectory->pose(a, uint32_t(item.body));
+        const BodyPose& q = scene_.trajectory->pose(b, uint32_t(item.body));
+        if (!same(p.position, q.position) || !same(p.rotation.coeffs(), q.rotation.coeffs())) return false;
+    }
+    return true;
 }
 
 void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {

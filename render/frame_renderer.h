@@ -58,6 +58,10 @@ public:
     const Camera& camera(uint32_t frame = 0) const { return cameras_[cameras_.size() > 1 ? frame : 0]; }
     bool camera_moves() const { return cameras_.size() > 1; }
     const Lights& lights() const { return lights_; }
+    // Whether frames a and b draw the same picture: the same camera and every body in the same
+    // pose, bit for bit (all a frame's pixels depend on: the lights, the fade and the meshes are
+    // the whole render's), as at the end of a movie whose pieces rest.
+    bool same_picture(uint32_t a, uint32_t b) const;
 
 private:
     struct Item {

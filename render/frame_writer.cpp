@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "render/png_io.h"
 #include "render/srgb_encode.h"
 
@@ -32,11 +33,13 @@ std::vector<uint8_t> FrameWriter::buffer() {
 
 void FrameWriter::write(const Job& job) {
     const auto t0 = std::chrono::steady_clock::now();
-    rgb_.resize(size_t(width_) * height_ * 3);
-    rgba_rows_to_rgb(job.rgba.data(), width_, height_, rgb_.data());
-    const std::string png = encode_png(rgb_.data(), width_, height_, 3, size_t(width_) * 3);
+    if (!job.rgba.empty()) {
+        rgb_.resize(size_t(width_) * height_ * 3);
+        rgba_rows_to_rgb(job.rgba.data(), width_, height_, rgb_.data());
+        last_png_ = encode_png(rgb_.data(), width_, height_, 3, size_t(width_) * 3);
+    }
     const auto t1 = std::chrono::steady_clock::now();
-    write_file_atomic(job.path, png);
+    write_file_atomic(job.path, last_png_);
     const auto t2 = std::chrono::steady_clock::now();
     encode_seconds_ += std::chrono::duration<double>(t1 - t0).count();
     write_seconds_ += std::chrono::duration<double>(t2 - t1).count();
@@ -51,16 +54,25 @@ void FrameWriter::rethrow() {
 }
 
 void FrameWriter::push(std::vector<uint8_t> rgba, std::string path) {
+    queue(Job{std::move(rgba), std::move(path)});
+    pushed_ = true;
+}
+
+void FrameWriter::repeat(std::string path) {
+    if (!pushed_) throw Error(ExitCode::Internal, "FrameWriter::repeat before any frame");
+    queue(Job{{}, std::move(path)});
+}
+
+void FrameWriter::queue(Job job) {
     if (!overlap_) {
-        Job job{std::move(rgba), std::move(path)};
         write(job);
-        free_.push_back(std::move(job.rgba));
+        if (!job.rgba.empty()) free_.push_back(std::move(job.rgba));
         return;
     }
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return queue_.size() < depth_ || error_; });
     rethrow();
-    queue_.push_back(Job{std::move(rgba), std::move(path)});
+    queue_.push_back(std::move(job));
     changed_.notify_all();
 }
 
@@ -95,7 +107,7 @@ void FrameWriter::run() {
         lock.lock();
         busy_ = false;
         if (failed && !error_) error_ = failed;
-        free_.push_back(std::move(job.rgba));
+        if (!job.rgba.empty()) free_.push_back(std::move(job.rgba));
         changed_.notify_all();
     }
 }

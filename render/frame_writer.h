@@ -28,6 +28,9 @@ public:
     // Queues the sRGB RGBA bytes of a frame (GL's bottom row first) to be encoded to PNG and
     // written to `path`; rethrows an error of an earlier write.
     void push(std::vector<uint8_t> rgba, std::string path);
+    // Queues the PNG of the frame pushed last written again to `path` (a frame whose pixels are
+    // that frame's: the same bytes, not encoded again). Needs an earlier push.
+    void repeat(std::string path);
     // Waits until every queued frame is written; rethrows the first error.
     void finish();
 
@@ -36,9 +39,10 @@ public:
 
 private:
     struct Job {
-        std::vector<uint8_t> rgba;
+        std::vector<uint8_t> rgba;  // empty: the last PNG again
         std::string path;
     };
+    void queue(Job job);
     void run();
     void write(const Job& job);
     void rethrow();
@@ -51,7 +55,9 @@ private:
     std::deque<Job> queue_;
     std::vector<std::vector<uint8_t>> free_;
     std::vector<uint8_t> rgb_;  // the writer's sRGB bytes
+    std::string last_png_;      // the last frame encoded
     bool stop_ = false;
+    bool pushed_ = false;  // (the render thread's)
     bool busy_ = false;
     std::exception_ptr error_;
     double encode_seconds_ = 0, write_seconds_ = 0;

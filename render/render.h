@@ -45,6 +45,7 @@ struct FrameRange {
 
 struct RenderReport {
     uint32_t frames = 0;
+    uint32_t repeated = 0;       // of them, the same picture as the frame before: its PNG written again
     double seconds = 0;          // wall time of the whole loop (unit: s)
     double draw_seconds = 0;     // submitting and rasterizing (main thread; unit: s)
     double readback_seconds = 0; // glReadPixels (unit: s)

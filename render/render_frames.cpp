@@ -55,13 +55,25 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
     FrameWriter writer(settings.width, settings.height, options.overlap);
     std::optional<Progress> progress;
     if (options.progress) progress.emplace("render", range.end - range.first);
+    bool drew_before = false;  // frame f - 1 went through the writer in this loop
     for (uint32_t f = range.first; f < range.end; ++f) {
         const std::string path = (std::filesystem::path(out_dir) / frame_file_name(f)).string();
         std::error_code ec;
         if (options.skip_existing && std::filesystem::exists(path, ec)) {
             if (progress) progress->advance();
+            drew_before = false;
             continue;
         }
+        // A frame that draws what the one before drew (pieces at rest, the camera still): that
+        // frame's PNG again, the same bytes without drawing or encoding.
+        if (drew_before && renderer.same_picture(f, f - 1)) {
+            writer.repeat(path);
+            if (progress) progress->advance();
+            ++report.frames;
+            ++report.repeated;
+            continue;
+        }
+        drew_before = true;
         std::vector<uint8_t> rgba = writer.buffer();
         renderer.render(f, rgba.data());
         report.draw_seconds += renderer.last_times().draw;

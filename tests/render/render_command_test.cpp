@@ -21,9 +21,12 @@ using namespace testing_support;
 namespace fs = std::filesystem;
 
 // The test scene's trajectory, saved with its scene in the settings as simulate writes it.
-std::string save_test_trajectory(const TempDir& dir, uint32_t frames = 24) {
+// `still_from`: every frame from it on holds that frame's poses (the pieces at rest).
+std::string save_test_trajectory(const TempDir& dir, uint32_t frames = 24, uint32_t still_from = UINT32_MAX) {
     TestScene t;
     Trajectory traj = test_trajectory(t.model, t.settings, frames);
+    for (uint32_t f = still_from; f < frames; ++f)
+        for (uint32_t b = 0; b < traj.bodies(); ++b) traj.poses[size_t(f) * traj.bodies() + b] = traj.pose(still_from, b);
     nlohmann::ordered_json j;
     j["scene"] = to_json(t.settings);
     traj.settings_json = j.dump();
@@ -80,6 +83,25 @@ TEST(RenderCommand, AFrameIsTheSameBytesForAnyThreadCountAndRange) {
         EXPECT_EQ(slurp(dir.file(std::string("one/") + f)), slurp(dir.file(std::string("two/") + f))) << f;
     EXPECT_EQ(slurp(dir.file("again/frame_00006.png")), slurp(dir.file("two/frame_00006.png")));
     EXPECT_NE(slurp(dir.file("two/frame_00005.png")), slurp(dir.file("two/frame_00006.png")));  // it moves
+}
+
+// Frames whose pieces rest where the frame before had them, the camera still, are that frame's PNG
+// written again, without drawing: the same bytes as the frame drawn on its own.
+TEST(RenderCommand, AFrameThatDrawsWhatTheOneBeforeDrewIsItsBytesAgain) {
+    TempDir dir;
+    const std::string traj = save_test_trajectory(dir, 48, 8);
+    const std::string m = fixture_model_path();
+    auto all = run_shatter({"render", m, traj, "-o", dir.file("all"), "--size", "320x180", "--frames", "0:48"});
+    ASSERT_EQ(all.exit_code, 0) << all.err;
+    EXPECT_NE(all.out.find("the same picture as the frame before"), std::string::npos) << all.out;
+    for (const std::string f : {"00040", "00047"}) {
+        const std::string range = std::to_string(std::stoi(f)) + ":" + std::to_string(std::stoi(f) + 1);
+        auto one = run_shatter({"render", m, traj, "-o", dir.file(f), "--size", "320x180", "--frames", range});
+        ASSERT_EQ(one.exit_code, 0) << one.err;
+        EXPECT_EQ(one.out.find("the same picture"), std::string::npos) << one.out;  // drawn
+        EXPECT_TRUE(slurp(dir.file(f + "/frame_" + f + ".png")) == slurp(dir.file("all/frame_" + f + ".png"))) << f;
+    }
+    EXPECT_TRUE(slurp(dir.file("all/frame_00005.png")) != slurp(dir.file("all/frame_00006.png")));  // it moved before
 }
 
 TEST(RenderCommand, ShotSectionSetsTheSizeAndFlagsOverrideIt) {
