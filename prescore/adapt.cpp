@@ -256,10 +256,6 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
     return fit;
 }
 
-namespace {
-
-}  // namespace
-
 Partition partition_adapted(const TetMesh& mesh, const TetTopology& topology, uint32_t pieces, uint64_t seed,
                             bool adapt, AutoChoices& choices, const std::vector<double>& density) {
     int32_t count = 0;
