@@ -1,10 +1,10 @@
 #include "render/frame_renderer.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cassert>
 #include <cmath>
 #include <chrono>
+#include <cstring>
 #include <map>
 
 #include "render/edge_filter.h"
