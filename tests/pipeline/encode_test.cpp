@@ -5,12 +5,10 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -18,12 +16,14 @@
 #include "pipeline/encode.h"
 #include "pipeline/process.h"
 #include "render/png_io.h"
+#include "support/frames_appearing.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::FramesAppearing;
 using testing_support::TempDir;
 
 // Frame i: a grey level 40 + 10 i on the left half, a moving bright bar on the right.
@@ -111,20 +111,11 @@ TEST(Encode, FramesTakenAsTheyAppearGiveTheBytesOfFramesThatWereAllThere) {
     write_frames(tmp.path() / "all", 8, 64, 48);
     encode_mp4((tmp.path() / "all").string(), 8, 30.0, tmp.file("all.mp4"));
     const fs::path later = tmp.path() / "later";
-    fs::create_directories(later);
-    std::atomic<uint32_t> written{0};
-    std::thread render([&] {
-        for (uint32_t i = 0; i < 8; ++i) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            fs::copy_file(tmp.path() / "all" / fmt::format("frame_{:05d}.png", i), later / fmt::format("frame_{:05d}.png", i));
-            written = i + 1;
-        }
-    });
+    FramesAppearing render(tmp.path() / "all", later, 8, std::chrono::milliseconds(20));
     uint32_t asked = 0;
     encode_mp4(later.string(), 8, 30.0, tmp.file("later.mp4"), [&](uint32_t f) {
         EXPECT_EQ(f, asked++);  // in order, each once
-        while (written <= f) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        return true;
+        return render.ready(f);
     });
     render.join();
     EXPECT_EQ(slurp(tmp.file("later.mp4")), slurp(tmp.file("all.mp4")));

@@ -3,12 +3,10 @@
 // means, and the same bytes twice.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <bit>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -16,12 +14,14 @@
 #include "pipeline/font.h"
 #include "pipeline/sheets.h"
 #include "render/png_io.h"
+#include "support/frames_appearing.h"
 #include "support/temp_dir.h"
 
 namespace shatter {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::FramesAppearing;
 using testing_support::TempDir;
 
 struct Colour {
@@ -202,20 +202,11 @@ TEST(Sheets, FramesTakenAsTheyAppearGiveTheBytesOfFramesThatWereAllThere) {
     const ContactSheetOptions options{.columns = 2, .rows = 2, .tile_width = 48};
     write_contact_sheet((tmp.path() / "all").string(), 8, 30.0, tmp.file("all.png"), options);
     const fs::path later = tmp.path() / "later";
-    fs::create_directories(later);
-    std::atomic<uint32_t> written{0};
-    std::thread render([&] {
-        for (uint32_t i = 0; i < 8; ++i) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-            fs::copy_file(tmp.path() / "all" / fmt::format("frame_{:05d}.png", i), later / fmt::format("frame_{:05d}.png", i));
-            written = i + 1;
-        }
-    });
+    FramesAppearing render(tmp.path() / "all", later, 8, std::chrono::milliseconds(10));
     std::vector<uint32_t> asked;
     write_contact_sheet(later.string(), 8, 30.0, tmp.file("later.png"), options, [&](uint32_t f) {
         asked.push_back(f);
-        while (written <= f) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        return true;
+        return render.ready(f);
     });
     render.join();
     EXPECT_EQ(asked, contact_sheet_frames(8, 4));  // the shown frames, in order, each once
