@@ -2,7 +2,10 @@
 // crack_fairing.h).
 #include "prescore/crack_fairing.h"
 
+#include "prescore/crack_refinement.h"
+
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -55,66 +58,111 @@ constexpr int kHeldLevels = 3;
 // The most a piece's field scale changes in one round of the volume fit (a factor of e^0.4).
 constexpr double kFitStep = 0.4;
 
+// The Gaussian-weighted piece shares around any point: the tets reached from `start` through
+// their faces (so not across a gap) whose centres lie within 2 width of x, each weighted by its
+// volume times G(distance); `sums` gets (piece, weight) in first-reached order, and the total
+// is returned (0 when nothing was reached).
+class Neighbourhood {
+public:
+    Neighbourhood(const TetMesh& mesh, const TetTopology& topo, const std::vector<uint32_t>& tet_piece)
+        : mesh_(mesh), topo_(topo), tet_piece_(tet_piece), seen_(mesh.tets.size(), UINT32_MAX) {
+        tets_of.resize(mesh.vertices.size());
+        for (uint32_t t = 0; t < mesh.tets.size(); ++t)
+            for (uint32_t v : mesh.tets[t]) tets_of[v].push_back(t);
+        centre_.resize(mesh.tets.size());
+        volume_.resize(mesh.tets.size());
+        for (size_t t = 0; t < mesh.tets.size(); ++t) {
+            const Tet& k = mesh.tets[t];
+            centre_[t] = tet_centroid(mesh, uint32_t(t));
+            volume_[t] = tet_volume(mesh.vertices[k[0]], mesh.vertices[k[1]], mesh.vertices[k[2]], mesh.vertices[k[3]]);
+        }
+    }
+
+    std::vector<std::vector<uint32_t>> tets_of;  // per vertex
+
+    // The tets reached; true when they are all one piece's.
+    bool reach(const Vec3& x, const std::vector<uint32_t>& start, double width) {
+        ++stamp_;
+        reach_.clear();
+        for (uint32_t t : start)
+            if (seen_[t] != stamp_) seen_[t] = stamp_, reach_.push_back(t);
+        bool alike = true;
+        for (size_t k = 0; k < reach_.size(); ++k) {
+            const uint32_t t = reach_[k];
+            alike = alike && tet_piece_[t] == tet_piece_[reach_.front()];
+            for (int i = 0; i < 4; ++i) {
+                const int32_t u = topo_.neighbour[t][i];
+                if (u < 0 || seen_[u] == stamp_) continue;
+                seen_[u] = stamp_;
+                if ((centre_[u] - x).norm() < 2 * width) reach_.push_back(uint32_t(u));
+            }
+        }
+        return alike;
+    }
+
+    // The shares over the tets `reach` found.
+    double shares(const Vec3& x, double width, std::vector<std::pair<uint32_t, double>>& sums) const {
+        sums.clear();
+        double total = 0;
+        for (uint32_t t : reach_) {
+            const double d = (centre_[t] - x).norm() / width;
+            const double w = volume_[t] * std::exp(-0.5 * d * d);
+            total += w;
+            auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& e) { return e.first == tet_piece_[t]; });
+            if (it == sums.end()) sums.emplace_back(tet_piece_[t], w);
+            else it->second += w;
+        }
+        return total;
+    }
+
+    uint32_t first_piece() const { return tet_piece_[reach_.front()]; }
+
+private:
+    const TetMesh& mesh_;
+    const TetTopology& topo_;
+    const std::vector<uint32_t>& tet_piece_;
+    std::vector<Vec3> centre_;
+    std::vector<double> volume_;
+    std::vector<uint32_t> seen_;
+    uint32_t stamp_ = 0;
+    std::vector<uint32_t> reach_;
+};
+
+// The most a piece around vertex v is held (kHeldLevels), and whether its tets are all one piece's.
+std::pair<int, bool> held_at(const Neighbourhood& hood, const std::vector<uint32_t>& tet_piece, uint32_t v,
+                             const std::vector<char>& held_piece) {
+    const uint32_t first = tet_piece[hood.tets_of[v].front()];
+    bool one = true;
+    int held = 0;
+    for (uint32_t t : hood.tets_of[v]) {
+        one = one && tet_piece[t] == first;
+        held = std::max<int>(held, held_piece[tet_piece[t]]);
+    }
+    return {held, one};
+}
+
 // chi_p(v): the share of piece p in a Gaussian-weighted neighbourhood of v (width sigma), over
 // the tets reached from v's own through their faces (so not across a gap) whose centres lie
 // within 2 sigma, each weighted by its volume; narrower around the pieces `held` (kHeldLevels).
-Field piece_field(const TetMesh& mesh, const TetTopology& topo, const std::vector<uint32_t>& tet_piece, double sigma,
+Field piece_field(const TetMesh& mesh, Neighbourhood& hood, const std::vector<uint32_t>& tet_piece, double sigma,
                   const std::vector<char>& held_piece) {
     const size_t nv = mesh.vertices.size();
-    std::vector<std::vector<uint32_t>> tets_of(nv);
-    for (uint32_t t = 0; t < mesh.tets.size(); ++t)
-        for (uint32_t v : mesh.tets[t]) tets_of[v].push_back(t);
-    std::vector<Vec3> centre(mesh.tets.size());
-    std::vector<double> volume(mesh.tets.size());
-    for (size_t t = 0; t < mesh.tets.size(); ++t) {
-        const Tet& k = mesh.tets[t];
-        centre[t] = tet_centroid(mesh, uint32_t(t));
-        volume[t] = tet_volume(mesh.vertices[k[0]], mesh.vertices[k[1]], mesh.vertices[k[2]], mesh.vertices[k[3]]);
-    }
     std::vector<std::tuple<uint32_t, uint32_t, double>> entries;
-    std::vector<uint32_t> seen(mesh.tets.size(), UINT32_MAX);
-    std::vector<uint32_t> reach;
     std::vector<std::pair<uint32_t, double>> sums;  // per piece in reach
     for (uint32_t v = 0; v < nv; ++v) {
-        if (tets_of[v].empty()) continue;
-        const uint32_t first = tet_piece[tets_of[v].front()];
-        bool one = true;
-        for (uint32_t t : tets_of[v]) one = one && tet_piece[t] == first;
-        int held = 0;  // the most a piece around v is held
-        for (uint32_t t : tets_of[v]) held = std::max<int>(held, held_piece[tet_piece[t]]);
+        if (hood.tets_of[v].empty()) continue;
+        const auto [held, one] = held_at(hood, tet_piece, v, held_piece);
         if (one && held >= kHeldLevels) {
-            entries.emplace_back(v, first, 1.0);
+            entries.emplace_back(v, tet_piece[hood.tets_of[v].front()], 1.0);
             continue;
         }
         const double width = sigma / double(1 << held);
-        // The tets within reach; one piece among them: chi is that piece's alone.
-        reach.assign(tets_of[v].begin(), tets_of[v].end());
-        for (uint32_t t : reach) seen[t] = v;
-        bool alike = true;
-        for (size_t k = 0; k < reach.size(); ++k) {
-            const uint32_t t = reach[k];
-            alike = alike && tet_piece[t] == first;
-            for (int i = 0; i < 4; ++i) {
-                const int32_t u = topo.neighbour[t][i];
-                if (u < 0 || seen[u] == v) continue;
-                seen[u] = v;
-                if ((centre[u] - mesh.vertices[v]).norm() < 2 * width) reach.push_back(uint32_t(u));
-            }
-        }
-        if (alike) {
-            entries.emplace_back(v, first, 1.0);
+        // One piece within reach: chi is that piece's alone.
+        if (hood.reach(mesh.vertices[v], hood.tets_of[v], width)) {
+            entries.emplace_back(v, hood.first_piece(), 1.0);
             continue;
         }
-        sums.clear();
-        double total = 0;
-        for (uint32_t t : reach) {
-            const double d = (centre[t] - mesh.vertices[v]).norm() / width;
-            const double w = volume[t] * std::exp(-0.5 * d * d);
-            total += w;
-            auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& e) { return e.first == tet_piece[t]; });
-            if (it == sums.end()) sums.emplace_back(tet_piece[t], w);
-            else it->second += w;
-        }
+        const double total = hood.shares(mesh.vertices[v], width, sums);
         for (const auto& [p, w] : sums) entries.emplace_back(v, p, w / total);
     }
     return field_of(nv, std::move(entries), 1e-9);
@@ -149,24 +197,24 @@ struct PolyFace {
 
 class Arrangement {
 public:
-    Arrangement(const TetMesh& mesh, const TetTopology& topo, const std::vector<uint32_t>& tet_piece,
-                const std::vector<std::array<FaceKind, 4>>& face_kind, const Field& field, size_t pieces)
-        : mesh_(mesh), topo_(topo), tet_piece_(tet_piece), face_kind_(face_kind), field_(field) {
+    Arrangement(const CrackRefinement& fine, const std::vector<uint32_t>& tet_piece, const Field& field, size_t pieces)
+        : mesh_(fine.mesh), fine_(fine), tet_piece_(tet_piece), field_(field) {
         out_.triangles.resize(pieces);
         out_.kinds.resize(pieces);
         out_.across.resize(pieces);
     }
 
-    CrackCells run() {
+    // The cells, and each point's name in `names`.
+    CrackCells run(std::vector<Name>& names) {
         for (uint32_t t = 0; t < mesh_.tets.size(); ++t) cut_tet(t);
+        names = std::move(names_);
         return std::move(out_);
     }
 
 private:
     const TetMesh& mesh_;
-    const TetTopology& topo_;
+    const CrackRefinement& fine_;
     const std::vector<uint32_t>& tet_piece_;
-    const std::vector<std::array<FaceKind, 4>>& face_kind_;
     const Field& field_;
     CrackCells out_;
     std::map<Name, uint32_t> index_;
@@ -219,9 +267,11 @@ private:
         return true;
     }
 
-    uint32_t corner(int k) {
+    uint32_t corner(int k) { return vertex_point(tet_[k]); }
+
+    uint32_t vertex_point(uint32_t v) {
         Name n;
-        n.vertex[0] = tet_[k];
+        n.vertex[0] = v;
         n.vertices = 1;
         CrackPoint x;
         weights(n, x);
@@ -354,10 +404,11 @@ private:
         return !faces.empty();
     }
 
-    // A polygon of piece p, split into triangles from its lowest-numbered point.
-    void emit(uint32_t p, const std::vector<uint32_t>& points, FaceKind kind, uint32_t across) {
+    // A polygon of piece p, split into triangles from its lowest-numbered point, or from point
+    // `apex` of it.
+    void emit(uint32_t p, const std::vector<uint32_t>& points, FaceKind kind, uint32_t across, size_t apex = SIZE_MAX) {
         const size_t n = points.size();
-        const size_t first = size_t(std::min_element(points.begin(), points.end()) - points.begin());
+        const size_t first = apex != SIZE_MAX ? apex : size_t(std::min_element(points.begin(), points.end()) - points.begin());
         for (size_t k = 1; k + 1 < n; ++k) {
             out_.triangles[p].push_back({points[first], points[(first + k) % n], points[(first + k + 1) % n]});
             out_.kinds[p].push_back(kind);
@@ -399,10 +450,23 @@ private:
             if (!left) continue;
             ++parts;
             for (const PolyFace& f : faces) {
-                if (f.plane < 4 && topo_.neighbour[t][f.plane] >= 0) continue;  // inside the object: the next tet's too
+                if (f.plane < 4 && fine_.boundary[t][f.plane] < 0) continue;  // inside the object: the next tet's too
                 std::vector<uint32_t> points;
-                for (uint32_t v : f.around) points.push_back(verts[v].point);
-                if (f.plane < 4) emit(p, points, face_kind_[t][f.plane], UINT32_MAX);
+                size_t apex = SIZE_MAX;  // the lowest midpoint taken in: the fan from a corner would
+                                         // have a flat triangle
+                for (size_t k = 0; k < f.around.size(); ++k) {
+                    points.push_back(verts[f.around[k]].point);
+                    // A whole tet's face along a split neighbour's: that edge's midpoint too.
+                    const uint32_t next = verts[f.around[(k + 1) % f.around.size()]].point;
+                    const Name &a = names_[points.back()], &b = names_[next];
+                    if (fine_.whole[t] && f.plane < 4 && a.vertices == 1 && a.pieces == 0 && b.vertices == 1 && b.pieces == 0) {
+                        const uint32_t m = fine_.midpoint(a.vertex[0], b.vertex[0]);
+                        if (m == UINT32_MAX) continue;
+                        points.push_back(vertex_point(m));
+                        if (apex == SIZE_MAX || points.back() < points[apex]) apex = points.size() - 1;
+                    }
+                }
+                if (f.plane < 4) emit(p, points, FaceKind(fine_.boundary[t][f.plane]), UINT32_MAX, apex);
                 else emit(p, points, FaceKind::Fracture, labels_[f.plane - 4]);
             }
         }
@@ -520,6 +584,110 @@ double mean_tet_edge(const TetMesh& mesh) {
     return mesh.tets.empty() ? 0.0 : sum / (6.0 * double(mesh.tets.size()));
 }
 
+namespace {
+
+// The field on the refined tets (crack_refinement.h). A tet is split where a crack can pass
+// near it: its vertices' largest (scaled) pieces differ, or one leads the next by less than
+// kSplitMargin. A split edge whose tets are all split has at its midpoint the Gaussian shares at
+// its place, as a vertex does (from the tets of both ends); any other the mean of its ends' (so
+// that a face between a split tet and a whole one is linear on both sides and the cracks meet),
+// as has one next to a vertex held to its own piece.
+constexpr double kSplitMargin = 0.1;
+
+struct Fine {
+    CrackRefinement mesh;
+    std::vector<uint32_t> piece;  // per refined tet
+    Field field;                  // unscaled, per refined vertex
+};
+
+Fine refine(const TetMesh& mesh, const TetTopology& topology, const std::vector<std::array<FaceKind, 4>>& face_kind,
+            Neighbourhood& hood, const std::vector<uint32_t>& tet_piece, const Field& field,
+            const std::vector<double>& scale, double sigma, const std::vector<char>& held_piece, bool split_any) {
+    const auto pure = [&](uint32_t v) { return field.start[v + 1] - field.start[v] == 1; };
+    // Per vertex: its largest scaled piece and by how much it leads the next.
+    std::vector<uint32_t> top(mesh.vertices.size(), UINT32_MAX);
+    std::vector<double> lead(mesh.vertices.size(), 0);
+    for (uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+        double first = 0, second = 0;
+        for (uint32_t i = field.start[v]; i < field.start[v + 1]; ++i) {
+            const double x = field.value[i] * scale[field.piece[i]];
+            if (x > first) second = first, first = x, top[v] = field.piece[i];
+            else second = std::max(second, x);
+        }
+        lead[v] = first - second;
+    }
+    std::vector<char> split(mesh.tets.size(), 0);
+    for (size_t t = 0; t < mesh.tets.size() && split_any; ++t)
+        for (uint32_t v : mesh.tets[t]) split[t] |= top[v] != top[mesh.tets[t][0]] || lead[v] < kSplitMargin;
+    Fine f;
+    f.mesh = refine_tets(mesh, topology, face_kind, split);
+    for (uint32_t parent : f.mesh.parent) f.piece.push_back(tet_piece[parent]);
+    std::vector<char> linear(f.mesh.ends.size(), 0);  // an edge of a whole tet
+    for (size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (split[t]) continue;
+        const Tet& k = mesh.tets[t];
+        for (int a = 0; a < 4; ++a)
+            for (int b = a + 1; b < 4; ++b) {
+                const uint32_t m = f.mesh.midpoint(k[a], k[b]);
+                if (m != UINT32_MAX) linear[m - mesh.vertices.size()] = 1;
+            }
+    }
+    std::vector<std::tuple<uint32_t, uint32_t, double>> entries;
+    for (uint32_t v = 0; v < mesh.vertices.size(); ++v)
+        for (uint32_t i = field.start[v]; i < field.start[v + 1]; ++i) entries.emplace_back(v, field.piece[i], field.value[i]);
+    std::vector<std::pair<uint32_t, double>> sums;
+    std::vector<uint32_t> start;
+    for (size_t e = 0; e < f.mesh.ends.size(); ++e) {
+        const uint32_t m = uint32_t(mesh.vertices.size() + e), a = f.mesh.ends[e][0], b = f.mesh.ends[e][1];
+        const auto [held_a, one_a] = held_at(hood, tet_piece, a, held_piece);
+        const auto [held_b, one_b] = held_at(hood, tet_piece, b, held_piece);
+        if (linear[e] || (pure(a) && pure(b)) || (one_a && held_a >= kHeldLevels) || (one_b && held_b >= kHeldLevels)) {
+            for (uint32_t v : {a, b})
+                for (uint32_t i = field.start[v]; i < field.start[v + 1]; ++i) entries.emplace_back(m, field.piece[i], field.value[i] / 2);
+            continue;
+        }
+        const double width = sigma / double(1 << std::max(held_a, held_b));
+        const Vec3& x = f.mesh.mesh.vertices[m];
+        start = hood.tets_of[a];
+        start.insert(start.end(), hood.tets_of[b].begin(), hood.tets_of[b].end());
+        if (hood.reach(x, start, width)) {
+            entries.emplace_back(m, hood.first_piece(), 1.0);
+            continue;
+        }
+        const double total = hood.shares(x, width, sums);
+        for (const auto& [p, w] : sums) entries.emplace_back(m, p, w / total);
+    }
+    f.field = field_of(f.mesh.mesh.vertices.size(), std::move(entries), 1e-9);
+    return f;
+}
+
+// The points' weights over the refined vertices made weights over the original ones (a midpoint
+// is half of each end).
+void to_original(CrackCells& cells, const CrackRefinement& fine) {
+    const size_t originals = fine.originals();
+    for (CrackPoint& x : cells.points) {
+        std::array<std::pair<uint32_t, double>, 8> w;
+        size_t n = 0;
+        const auto add = [&](uint32_t v, double weight) {
+            for (size_t i = 0; i < n; ++i)
+                if (w[i].first == v) return void(w[i].second += weight);
+            w[n++] = {v, weight};
+        };
+        for (int k = 0; k < x.count; ++k) {
+            if (x.vertex[size_t(k)] < originals) add(x.vertex[size_t(k)], x.weight[size_t(k)]);
+            else
+                for (uint32_t v : fine.ends[x.vertex[size_t(k)] - originals]) add(v, x.weight[size_t(k)] / 2);
+        }
+        std::sort(w.begin(), w.begin() + long(n));
+        assert(n <= 4);  // all in one original tet
+        x = CrackPoint{};
+        x.count = uint8_t(n);
+        for (size_t i = 0; i < n; ++i) x.vertex[i] = w[i].first, x.weight[i] = w[i].second;
+    }
+}
+
+}  // namespace
+
 CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const std::vector<uint32_t>& tet_piece,
                        const std::vector<std::array<FaceKind, 4>>& face_kind, const CrackFairingSettings& settings) {
     uint32_t pieces = 0;
@@ -532,13 +700,23 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
     const double sigma = settings.width * mean_tet_edge(mesh);
     std::vector<char> held(pieces, 0);
     std::vector<double> scale(pieces, 1.0);  // each piece's field is scale x chi
-    Field unscaled = piece_field(mesh, topology, tet_piece, sigma, held);
+    Neighbourhood hood(mesh, topology, tet_piece);
+    Field unscaled = piece_field(mesh, hood, tet_piece, sigma, held);
+    // The cells of the field as it is scaled now, on the tets split (the last round) or not.
+    const auto cut = [&](bool split) {
+        const Fine fine = refine(mesh, topology, face_kind, hood, tet_piece, unscaled, scale, sigma, held, split);
+        Field field = fine.field;
+        for (size_t i = 0; i < field.value.size(); ++i) field.value[i] *= scale[field.piece[i]];
+        std::vector<Name> names;
+        CrackCells cells = Arrangement(fine.mesh, fine.piece, field, pieces).run(names);
+        to_original(cells, fine.mesh);
+        for (const std::vector<Tri>& cell : cells.triangles) cells.open += !closed(cell);
+        cells.split_tets = split ? (fine.mesh.mesh.tets.size() - mesh.tets.size()) / 7 : 0;
+        return cells;
+    };
     int fits = settings.fit_rounds;
     for (;;) {
-        Field field = unscaled;
-        for (size_t i = 0; i < field.value.size(); ++i) field.value[i] *= scale[field.piece[i]];
-        CrackCells cells = Arrangement(mesh, topology, tet_piece, face_kind, field, pieces).run();
-        for (const std::vector<Tri>& cell : cells.triangles) cells.open += !closed(cell);
+        CrackCells cells = cut(false);
         if (cells.open > 0) return cells;
         const std::vector<Vec3> x = cells.place(mesh.vertices);
         std::vector<double> kept(pieces, 0);  // each cell's volume over its tets'
@@ -564,8 +742,14 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
             if (kept[p] < settings.keep && held[p] < kHeldLevels) held[p] += 1, again = true;
         cells.held = size_t(std::count_if(held.begin(), held.end(), [](char c) { return c > 0; }));
         cells.fit_rounds = size_t(settings.fit_rounds - std::max(fits, 0));
-        if (!again) return cells;
-        unscaled = piece_field(mesh, topology, tet_piece, sigma, held);
+        if (!again) {
+            if (!settings.split_tets) return cells;
+            CrackCells fine = cut(true);
+            if (fine.open > 0) return cells;  // not seen; the cells of the whole tets close
+            fine.held = cells.held, fine.fit_rounds = cells.fit_rounds;
+            return fine;
+        }
+        unscaled = piece_field(mesh, hood, tet_piece, sigma, held);
     }
 }
 

@@ -18,8 +18,9 @@
 //
 // the tet clipped by the planes chi_p = chi_q, and the crack between p and q is made of the
 // polygons on those planes: planar within a tet, continuous across tets (chi is), smooth at the
-// scale of sigma. The smoothing moves volume from small and thin pieces to their neighbours (on
-// the demo two pieces kept 3% and 14% of their tets' volume), so each piece's field is then
+// scale of sigma (the split tets below are tets here too). The smoothing moves volume from small
+// and thin pieces to their neighbours (on the demo two pieces kept 3% and 14% of their tets'
+// volume), so each piece's field is then
 // scaled, chi_p -> s_p chi_p (still linear in a tet: nothing below changes), to fit its cell's
 // volume to its tets': up to `fit_rounds` rounds, each multiplying s_p by the square root of
 // (tets' volume / cell's), by at most e^0.4, for the pieces off by more than `fit_tolerance` (two
@@ -28,6 +29,17 @@
 // piece that still keeps less than `keep` of its tets' volume is cut again with the field around
 // it smoothed over sigma / 2, then sigma / 4, and last with the vertices inside it (whose tets are
 // all its own) its alone, so that its cracks stay within the tets that touch them.
+//
+// Planar within a tet, the crack bends at the tets' faces, by the linear interpolation's error
+// in chi's direction, which grows with the tet's size over sigma (and with its flatness). So the
+// last cut, once the fit and the holds are settled, is made on the crack tets split 1:8
+// (crack_refinement.h): the tets where the largest piece is not the same at all four vertices or
+// leads the next by less than 0.1, each into eight at its edges' midpoints, where chi is the
+// Gaussian sum itself at the midpoint's place (an edge of a whole tet too gets the mean of its
+// ends', so a face between a split tet and a whole one is linear on both sides). The planes
+// then span half a tet, and the bends between the crack's triangles halve (the demo's faired
+// cells: creases within one interface 4.0 -> 1.9 by crack_creases.h's measure, docs/log.md). A midpoint is half of each of its ends, so every point's weights are still over
+// the vertices of one tet of the mesh, and `place` follows any placement.
 //
 // Both sides of a crack are the same points. Each point of the arrangement is named by what
 // defines it: the smallest tet-mesh simplex that holds it (a vertex, an edge, a face or a tet, by
@@ -41,8 +53,8 @@
 //
 // Positions come last (`place`): a point is its weights times the vertices' positions, so the
 // cells can be built for any placement of the tet vertices (render surfaces push the outer ones
-// out by a margin) and follow it. Deterministic: tets in order, pieces ascending, points
-// numbered in first use, no hashing, one thread.
+// out by a margin) and follow it. Deterministic: tets in order (a split tet's eight in its
+// place), pieces ascending, points numbered in first use, no hashing, one thread.
 #pragma once
 
 #include <array>
@@ -66,6 +78,7 @@ struct CrackFairingSettings {
     int fit_rounds = 2;           // most rounds of the volume fit (0: none)
     double fit_tolerance = 0.05;  // a cell within this share of its tets' volume is left as it is
     double keep = 0.75;           // least share of its tets' volume a piece's cell keeps before it is held
+    bool split_tets = true;       // the last cut on the crack tets split 1:8 (crack_refinement.h)
 };
 
 // A point of the arrangement: weights over up to four tet-mesh vertices (ascending ids).
@@ -87,6 +100,7 @@ struct CrackCells {
     size_t cut_tets = 0;     // tets shared by more than one piece's cell
     size_t fit_rounds = 0;   // rounds of the volume fit run
     size_t held = 0;         // pieces cut again, held (`keep`)
+    size_t split_tets = 0;   // tets split 1:8 for the last cut (`split_tets`)
     size_t open = 0;         // cells that do not close (a tet shared by three or more pieces can leave one
                              // open; render surfaces then keep the tet cells for every piece)
 

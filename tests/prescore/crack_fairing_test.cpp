@@ -1,7 +1,9 @@
 // Faired cracks (prescore/crack_fairing.h). On a grid of tets split into two pieces by a tilted
 // plane (their interface a staircase of tet faces, none nearer than 20 degrees to the plane),
-// the faired crack is that plane: away from the grid's sides, every crack point within a fifth of
+// the faired crack is that plane: away from the grid's sides, every crack point within a quarter of
 // a cube of it and every crack triangle within 15 degrees; the two sides are the same triangles.
+// Around a ball, splitting the crack tets 1:8 halves the bends between neighbouring crack
+// triangles.
 // On a sphere cut into 6 pieces by prescore, the render surfaces' cracks meet: every crack vertex
 // and triangle centre of a piece lies within 1e-6 of the diagonal of another piece's crack (no
 // gap, no overlap), none falls back to its tet surface, and the crack faces are less creased
@@ -79,8 +81,10 @@ TEST(CrackFairing, AStaircaseBetweenTwoPiecesBecomesThePlaneThatMadeIt) {
         }
     EXPECT_GT(nearest, 20.0);
     // Away from the grid's sides (where the field's neighbourhood is cut short), the crack is
-    // the plane within the grid's own error.
-    EXPECT_LT(farthest, 0.2) << "unit: the cube's side";
+    // the plane within the grid's own error: the Gaussian field is the staircase smoothed, and on
+    // the split tets the crack follows it closer (0.24 of a cube from the plane at most, 0.19
+    // with the field linear in the whole tets).
+    EXPECT_LT(farthest, 0.25) << "unit: the cube's side";
     EXPECT_LT(widest, 15.0) << "degrees from the plane's normal";
     ::testing::Test::RecordProperty("farthest", std::to_string(farthest));
     ::testing::Test::RecordProperty("widest_degrees", std::to_string(widest));
@@ -99,6 +103,101 @@ TEST(CrackFairing, AStaircaseBetweenTwoPiecesBecomesThePlaneThatMadeIt) {
             other.insert(key({f[0], f[2], f[1]}));
         }
     EXPECT_EQ(one, other);
+}
+
+// The mean and the largest angle between neighbouring crack triangles of piece 0 (sharing an
+// edge, both a cube and a half from the grid's sides), and how many such pairs there are.
+struct Bends {
+    double mean = 0, most = 0;
+    size_t pairs = 0;
+};
+Bends crack_bends(const CrackCells& cells, const std::vector<Vec3>& x) {
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<Vec3>> at_edge;
+    for (size_t t = 0; t < cells.triangles[0].size(); ++t) {
+        if (cells.kinds[0][t] != FaceKind::Fracture) continue;
+        const Tri& tri = cells.triangles[0][t];
+        bool inside = true;
+        for (uint32_t v : tri) inside = inside && x[v].minCoeff() > 1.5 && x[v].maxCoeff() < 6.5;
+        const Vec3 n = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
+        if (!inside || n.norm() < 1e-9) continue;
+        for (int k = 0; k < 3; ++k) at_edge[std::minmax(tri[k], tri[(k + 1) % 3])].push_back(n.normalized());
+    }
+    Bends b;
+    for (const auto& [e, n] : at_edge) {
+        if (n.size() != 2) continue;
+        const double deg = std::acos(std::clamp(n[0].dot(n[1]), -1.0, 1.0)) * 180 / M_PI;
+        b.mean += deg, b.most = std::max(b.most, deg), ++b.pairs;
+    }
+    if (b.pairs) b.mean /= double(b.pairs);
+    return b;
+}
+
+// A ball of radius 2.6 in the middle of the grid as piece 0, the rest piece 1: the faired crack
+// is a sphere's smoothed staircase, cut with the field linear in each tet (a plane per tet, bent
+// at its faces). Splitting the crack tets 1:8, with the Gaussian field itself at the midpoints,
+// halves the tets the planes span, and with them the linear interpolation's error in the
+// crack's direction: the mean bend between neighbouring crack triangles falls to about half
+// (measured: 8.4 to 4.6 degrees, the largest 32 to 27), the two sides are still the same
+// triangles, and the cell keeps its volume.
+TEST(CrackFairing, SplittingTheCrackTetsHalvesTheBendsBetweenTheCracksTriangles) {
+    Split s;
+    s.mesh = test::cube_grid(8, 8, 8, 1.0);
+    for (const Tet& t : s.mesh.tets) {
+        const Vec3 c = (s.mesh.vertices[t[0]] + s.mesh.vertices[t[1]] + s.mesh.vertices[t[2]] + s.mesh.vertices[t[3]]) / 4;
+        s.piece.push_back((c - Vec3(4, 4, 4)).norm() < 2.6 ? 0 : 1);
+    }
+    const TetTopology topo = build_topology(s.mesh);
+    const std::vector<std::array<FaceKind, 4>> kinds(s.mesh.tets.size(), {FaceKind::Outer, FaceKind::Outer, FaceKind::Outer, FaceKind::Outer});
+    CrackFairingSettings whole;
+    whole.split_tets = false;
+    const CrackCells before = crack_cells(s.mesh, topo, s.piece, kinds, whole);
+    const CrackCells after = crack_cells(s.mesh, topo, s.piece, kinds);
+    EXPECT_EQ(before.split_tets, 0u);
+    EXPECT_GT(after.split_tets, 100u);
+    EXPECT_EQ(after.open, 0u);
+    EXPECT_EQ(after.degenerate, 0u);
+    const Bends b = crack_bends(before, before.place(s.mesh.vertices));
+    const Bends a = crack_bends(after, after.place(s.mesh.vertices));
+    ASSERT_GT(b.pairs, 100u);
+    ASSERT_GT(a.pairs, 2 * b.pairs);
+    ::testing::Test::RecordProperty("mean_bend_before", std::to_string(b.mean));
+    ::testing::Test::RecordProperty("mean_bend_after", std::to_string(a.mean));
+    ::testing::Test::RecordProperty("most_bend_before", std::to_string(b.most));
+    ::testing::Test::RecordProperty("most_bend_after", std::to_string(a.most));
+    EXPECT_LT(a.mean, 0.6 * b.mean) << "degrees";
+    EXPECT_LT(a.most, b.most) << "degrees";
+    // The two sides: the same points (each named once), the same triangles turned over.
+    std::multiset<std::array<uint32_t, 3>> one, other;
+    for (size_t t = 0; t < after.triangles[0].size(); ++t)
+        if (after.kinds[0][t] == FaceKind::Fracture) {
+            Tri f = after.triangles[0][t];
+            std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+            one.insert({f[0], f[1], f[2]});
+        }
+    for (size_t t = 0; t < after.triangles[1].size(); ++t)
+        if (after.kinds[1][t] == FaceKind::Fracture) {
+            Tri f = {after.triangles[1][t][0], after.triangles[1][t][2], after.triangles[1][t][1]};
+            std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+            other.insert({f[0], f[1], f[2]});
+        }
+    EXPECT_EQ(one, other);
+    // The volume: the ball's cell within 5% of its tets' volume of the unsplit one's (measured:
+    // 1.12 and 1.17 times its tets'; the volume fit runs on the whole tets).
+    const auto volume = [&](const CrackCells& c) {
+        const std::vector<Vec3> x = c.place(s.mesh.vertices);
+        double v = 0;
+        for (const Tri& t : c.triangles[0]) v += x[t[0]].dot(x[t[1]].cross(x[t[2]])) / 6;
+        return v;
+    };
+    double own = 0;
+    for (size_t t = 0; t < s.mesh.tets.size(); ++t)
+        if (s.piece[t] == 0) {
+            const Tet& k = s.mesh.tets[t];
+            own += tet_volume(s.mesh.vertices[k[0]], s.mesh.vertices[k[1]], s.mesh.vertices[k[2]], s.mesh.vertices[k[3]]);
+        }
+    EXPECT_NEAR(volume(after), volume(before), 0.05 * own);
+    ::testing::Test::RecordProperty("volume_over_tets_before", std::to_string(volume(before) / own));
+    ::testing::Test::RecordProperty("volume_over_tets_after", std::to_string(volume(after) / own));
 }
 
 // Roughness on the tilted plane's crack: every crack point moves by the amplitude times the
