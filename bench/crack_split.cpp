@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
             std::vector<size_t> tets(cells->triangles.size(), 0);
             for (uint32_t p : model.tet_piece) ++tets[p];
             double area_all = 0, within_all = 0, junction_all = 0;
-            double least = 1e9, most = 0;
+            double least = 1e9, most = 0, tiny_junction = 0;
             {
                 std::vector<double> own(cells->triangles.size(), 0), cell(cells->triangles.size(), 0);
                 for (size_t t = 0; t < model.mesh.tets.size(); ++t) {
@@ -111,6 +111,10 @@ int main(int argc, char** argv) {
                 }
                 size_t tiny = 0;
                 for (const auto& [r, ar] : patch) tiny += ar < 0.02 * area;
+                for (const auto& [e, f] : edges) {
+                    if (f.size() != 2 || cells->across[p][f[0]] == cells->across[p][f[1]]) continue;
+                    if (patch[root(f[0])] < 0.05 * area || patch[root(f[1])] < 0.05 * area) tiny_junction += (x[e.first] - x[e.second]).norm();
+                }
                 std::printf("%s,%zu,%zu,%.4g,%.2f,%.2f,%.2f  junction edges %.2f, %zu patches (%zu under 2%%), neighbours %zu\n", argv[a], p, tets[p], area, within / area * diagonal,
                             junction / area * diagonal, (within + junction) / area * diagonal, jlen / area * diagonal, patch.size(), tiny, patches_of.size());
                 area_all += area, within_all += within, junction_all += junction;
@@ -119,7 +123,7 @@ int main(int argc, char** argv) {
                         argv[a], model.tet_piece.size(), area_all, within_all / area_all * diagonal,
                         junction_all / area_all * diagonal, (within_all + junction_all) / area_all * diagonal, secs,
                         cells->points.size(), cells->held, cells->open, cells->degenerate, cells->split_tets);
-            std::printf("cell volume / tet volume %.3f to %.3f\n", least, most);
+            std::printf("cell volume / tet volume %.3f to %.3f; junction edges beside patches under 5%% of their piece's crack %.2f\n", least, most, tiny_junction / area_all * diagonal);
             std::printf("within-interface edge length by angle (10-degree bins, density units):");
             for (double h : hist) std::printf(" %.2f", h / area_all * diagonal);
             std::printf("\n");

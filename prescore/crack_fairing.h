@@ -34,12 +34,15 @@
 // in chi's direction, which grows with the tet's size over sigma (and with its flatness). So the
 // last cut, once the fit and the holds are settled, is made on the crack tets split 1:8
 // (crack_refinement.h): the tets where the largest piece is not the same at all four vertices or
-// leads the next by less than 0.1, each into eight at its edges' midpoints, where chi is the
-// Gaussian sum itself at the midpoint's place (an edge of a whole tet too gets the mean of its
-// ends', so a face between a split tet and a whole one is linear on both sides). The planes
-// then span half a tet, and the bends between the crack's triangles halve (the demo's faired
-// cells: creases within one interface 4.0 -> 1.9 by crack_creases.h's measure, docs/log.md). A midpoint is half of each of its ends, so every point's weights are still over
-// the vertices of one tet of the mesh, and `place` follows any placement.
+// leads the next by less than 0.1 (0.05 left more of the crack tets' midpoints linear and bent
+// the crack around a ball more, 0.2 and 0.4 gave the demo the same creases), each into
+// eight at its edges' midpoints, where chi is the Gaussian sum itself at the midpoint's place
+// (but a split edge of a whole tet gets the mean of its ends', so that a face between a split
+// tet and a whole one is linear on both sides). The planes then span half a tet, and the bends
+// between the crack's triangles halve (the demo's faired cells: creases within one interface
+// 4.0 -> 1.9 by crack_creases.h's measure, docs/log.md). A midpoint is half of each of its
+// ends, so every point's weights are still over the vertices of one tet of the mesh, and
+// `place` follows any placement.
 //
 // Both sides of a crack are the same points. Each point of the arrangement is named by what
 // defines it: the smallest tet-mesh simplex that holds it (a vertex, an edge, a face or a tet, by
