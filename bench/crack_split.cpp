@@ -29,6 +29,23 @@ using namespace shatter;
 
 int main(int argc, char** argv) {
     setup_logging("warn");
+    if (argc >= 3 && std::string(argv[1]) == "--surfaces") {  // the render surfaces' creases per piece
+        for (int a = 2; a < argc; ++a) {
+            const Model model = load_model(argv[a]);
+            Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+            for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+            std::vector<RenderSurface> all;
+            for (size_t p = 0; p < model.pieces.size(); ++p) {
+                if (!model.pieces[p].render) continue;
+                all.push_back(*model.pieces[p].render);
+                const CrackCreases c = crack_creases({*model.pieces[p].render}, (hi - lo).norm());
+                std::printf("%s,%zu,%.4g,%.2f,%zu triangles\n", argv[a], p, c.area, c.density, model.pieces[p].render->triangles.size());
+            }
+            const CrackCreases c = crack_creases(all, (hi - lo).norm());
+            std::printf("%s,all,%.4g,%.2f\n", argv[a], c.area, c.density);
+        }
+        return 0;
+    }
     if (argc == 4 && std::string(argv[1]) == "--make") {
         Shot shot = load_shot_or_mesh(argv[3]);
         shot.prescore.render_surface = false;
