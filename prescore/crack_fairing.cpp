@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -197,7 +198,8 @@ struct PolyFace {
 class Arrangement {
 public:
     Arrangement(const CrackRefinement& fine, const std::vector<uint32_t>& tet_piece, const Field& field, size_t pieces)
-        : mesh_(fine.mesh), fine_(fine), tet_piece_(tet_piece), field_(field) {
+        : mesh_(fine.mesh), fine_(fine), tet_piece_(tet_piece), field_(field),
+          vertex_point_(fine.mesh.vertices.size(), UINT32_MAX) {
         out_.triangles.resize(pieces);
         out_.kinds.resize(pieces);
         out_.across.resize(pieces);
@@ -216,9 +218,12 @@ private:
     const std::vector<uint32_t>& tet_piece_;
     const Field& field_;
     CrackCells out_;
-    std::map<Name, uint32_t> index_;
+    std::map<Name, uint32_t> index_;  // the points of more than one vertex
     std::vector<Name> names_;
+    std::vector<uint32_t> vertex_point_;  // per tet-mesh vertex: its point, once it has one
     uint32_t alone_ = 0;
+    std::vector<std::pair<std::pair<uint32_t, uint32_t>, uint32_t>> cuts_;  // clip's, kept between calls
+    std::vector<std::pair<uint32_t, uint32_t>> cap_next_;
     // The tet being cut: its vertices and the pieces positive at one of them.
     Tet tet_{};
     std::vector<uint32_t> labels_;
@@ -269,12 +274,15 @@ private:
     uint32_t corner(int k) { return vertex_point(tet_[k]); }
 
     uint32_t vertex_point(uint32_t v) {
+        if (vertex_point_[v] != UINT32_MAX) return vertex_point_[v];
         Name n;
         n.vertex[0] = v;
         n.vertices = 1;
         CrackPoint x;
         weights(n, x);
-        return add(n, x);
+        vertex_point_[v] = uint32_t(out_.points.size());
+        out_.points.push_back(x), names_.push_back(n);
+        return vertex_point_[v];
     }
 
     // The point on the polyhedron edge a-b where plane `bit` cuts it, in piece p's polyhedron.
@@ -338,16 +346,20 @@ private:
         }
         if (!any_out) return true;
         if (!any_in) return false;
-        std::map<uint32_t, uint32_t> local;  // point -> index in verts
-        for (size_t i = 0; i < verts.size(); ++i) local.emplace(verts[i].point, uint32_t(i));
-        auto vertex_of = [&](uint32_t point, uint32_t planes) {
-            auto [it, fresh] = local.emplace(point, uint32_t(verts.size()));
-            if (fresh) verts.push_back({point, planes}), sides.push_back(0);
-            return it->second;
+        // (A polyhedron has a dozen vertices: its small lookups are vectors searched in turn.)
+        const auto local = [&](uint32_t point) {  // the index in verts of a point, or verts.size()
+            size_t i = 0;
+            while (i < verts.size() && verts[i].point != point) ++i;
+            return uint32_t(i);
         };
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> cuts;  // (kept end, cut end) -> point: once per edge
+        auto vertex_of = [&](uint32_t point, uint32_t planes) {
+            const uint32_t i = local(point);
+            if (i == verts.size()) verts.push_back({point, planes}), sides.push_back(0);
+            return i;
+        };
+        cuts_.clear();  // (kept end, cut end) -> point: once per edge
         std::vector<PolyFace> kept;
-        std::map<uint32_t, uint32_t> cap_next;  // the cap's edges, from -> to
+        cap_next_.clear();  // the cap's edges, from -> to (each from once)
         bool broken = false;
         for (const PolyFace& f : faces) {
             PolyFace g{f.plane, {}};
@@ -360,8 +372,14 @@ private:
                     const PolyVertex va = verts[a], vb = verts[b];
                     const PolyVertex& in = sides[a] > 0 ? va : vb;
                     const PolyVertex& out = sides[a] > 0 ? vb : va;
-                    auto [cut, fresh] = cuts.emplace(std::make_pair(in.point, out.point), 0);
-                    if (fresh) cut->second = cut_point(in, out, bit, p, r);
+                    auto cut = std::find_if(cuts_.begin(), cuts_.end(), [&](const auto& c) {
+                        return c.first == std::make_pair(in.point, out.point);
+                    });
+                    if (cut == cuts_.end()) {
+                        const uint32_t made = cut_point(in, out, bit, p, r);
+                        cuts_.emplace_back(std::make_pair(in.point, out.point), made);
+                        cut = cuts_.end() - 1;
+                    }
                     const uint32_t x = cut->second;
                     g.around.push_back(vertex_of(x, (va.planes & vb.planes) | (1u << bit)));
                     on.push_back(1);
@@ -378,23 +396,33 @@ private:
                 const size_t m = g.around.size();
                 size_t from = at[0], to = at[1];
                 if ((from + 1) % m != to) std::swap(from, to);
-                if ((from + 1) % m == to) broken |= !cap_next.emplace(verts[g.around[to]].point, verts[g.around[from]].point).second;
+                if ((from + 1) % m == to) {
+                    const uint32_t a = verts[g.around[to]].point;
+                    if (std::any_of(cap_next_.begin(), cap_next_.end(), [&](const auto& e) { return e.first == a; }))
+                        broken = true;
+                    else
+                        cap_next_.emplace_back(a, verts[g.around[from]].point);
+                }
             } else if (at.size() > 2) {
                 broken = true;
             }
             kept.push_back(std::move(g));
         }
-        if (!broken && cap_next.size() >= 3) {
+        if (!broken && cap_next_.size() >= 3) {
             PolyFace cap{bit, {}};
-            uint32_t at = cap_next.begin()->first;
-            for (size_t k = 0; k <= cap_next.size() && !broken; ++k) {
-                cap.around.push_back(local.at(at));
-                auto it = cap_next.find(at);
-                if (it == cap_next.end()) broken = true;
+            // From the lowest-numbered point.
+            const uint32_t first = std::min_element(cap_next_.begin(), cap_next_.end())->first;
+            uint32_t at = first;
+            for (size_t k = 0; k <= cap_next_.size() && !broken; ++k) {
+                const uint32_t i = local(at);
+                if (i == verts.size()) throw std::out_of_range("a cap's point is not the polyhedron's");
+                cap.around.push_back(i);
+                auto it = std::find_if(cap_next_.begin(), cap_next_.end(), [&](const auto& e) { return e.first == at; });
+                if (it == cap_next_.end()) broken = true;
                 else at = it->second;
-                if (at == cap_next.begin()->first) break;
+                if (at == first) break;
             }
-            if (!broken && cap.around.size() == cap_next.size()) kept.push_back(std::move(cap));
+            if (!broken && cap.around.size() == cap_next_.size()) kept.push_back(std::move(cap));
             else ++out_.degenerate;
         } else if (broken) {
             ++out_.degenerate;
@@ -526,6 +554,13 @@ Fine refine(const TetMesh& mesh, const TetTopology& topology, const std::vector<
             Neighbourhood& hood, const std::vector<uint32_t>& tet_piece, const Field& field,
             const std::vector<double>& scale, double sigma, const std::vector<char>& held_piece, bool split_any) {
     const auto pure = [&](uint32_t v) { return field.start[v + 1] - field.start[v] == 1; };
+    Fine f;
+    if (!split_any) {  // the tets as they are, the field as it is
+        f.mesh = refine_tets(mesh, topology, face_kind, std::vector<char>(mesh.tets.size(), 0));
+        f.piece = tet_piece;
+        f.field = field;
+        return f;
+    }
     // Per vertex: its largest scaled piece and by how much it leads the next.
     std::vector<uint32_t> top(mesh.vertices.size(), UINT32_MAX);
     std::vector<double> lead(mesh.vertices.size(), 0);
@@ -539,9 +574,8 @@ Fine refine(const TetMesh& mesh, const TetTopology& topology, const std::vector<
         lead[v] = first - second;
     }
     std::vector<char> split(mesh.tets.size(), 0);
-    for (size_t t = 0; t < mesh.tets.size() && split_any; ++t)
+    for (size_t t = 0; t < mesh.tets.size(); ++t)
         for (uint32_t v : mesh.tets[t]) split[t] |= top[v] != top[mesh.tets[t][0]] || lead[v] < kSplitMargin;
-    Fine f;
     f.mesh = refine_tets(mesh, topology, face_kind, split);
     for (uint32_t parent : f.mesh.parent) f.piece.push_back(tet_piece[parent]);
     std::vector<char> linear(f.mesh.ends.size(), 0);  // an edge of a whole tet
@@ -636,8 +670,13 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
         return cells;
     };
     int fits = settings.fit_rounds;
+    bool split_open = false;  // the split tets' cells did not close: the whole tets' are kept
     for (;;) {
-        CrackCells cells = cut(false);
+        // Once no round of the fit is left, the cut is made on the split tets: its cells are the
+        // ones returned unless a piece is held again (its volume is then theirs).
+        bool fine = fits <= 0 && settings.split_tets && !split_open;
+        CrackCells cells = cut(fine);
+        if (cells.open > 0 && fine) cells = cut(false), fine = false, split_open = true;  // (not seen)
         if (cells.open > 0) return cells;
         const std::vector<Vec3> x = cells.place(mesh.vertices);
         std::vector<double> kept(pieces, 0);  // each cell's volume over its tets'
@@ -664,11 +703,12 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
         cells.held = size_t(std::count_if(held.begin(), held.end(), [](char c) { return c > 0; }));
         cells.fit_rounds = size_t(settings.fit_rounds - std::max(fits, 0));
         if (!again) {
-            if (!settings.split_tets) return cells;
-            CrackCells fine = cut(true);
-            if (fine.open > 0) return cells;  // not seen; the cells of the whole tets close
-            fine.held = cells.held, fine.fit_rounds = cells.fit_rounds;
-            return fine;
+            if (fine || split_open || !settings.split_tets) return cells;
+            // The fit settled within its rounds: the same field on the split tets.
+            CrackCells split = cut(true);
+            if (split.open > 0) return cells;  // not seen; the cells of the whole tets close
+            split.held = cells.held, split.fit_rounds = cells.fit_rounds;
+            return split;
         }
         unscaled = piece_field(mesh, hood, tet_piece, sigma, held);
     }

@@ -30,19 +30,22 @@
 // it smoothed over sigma / 2, then sigma / 4, and last with the vertices inside it (whose tets are
 // all its own) its alone, so that its cracks stay within the tets that touch them.
 //
-// Planar within a tet, the crack bends at the tets' faces, by the linear interpolation's error
-// in chi's direction, which grows with the tet's size over sigma (and with its flatness). So the
-// last cut, once the fit and the holds are settled, is made on the crack tets split 1:8
-// (crack_refinement.h): the tets where the largest piece is not the same at all four vertices or
-// leads the next by less than 0.1 (0.05 left more of the crack tets' midpoints linear and bent
-// the crack around a ball more, 0.2 and 0.4 gave the demo the same creases), each into
-// eight at its edges' midpoints, where chi is the Gaussian sum itself at the midpoint's place
-// (but a split edge of a whole tet gets the mean of its ends', so that a face between a split
-// tet and a whole one is linear on both sides). The planes then span half a tet, and the bends
-// between the crack's triangles halve (the demo's faired cells: creases within one interface
-// 4.0 -> 1.9 by crack_creases.h's measure, docs/log.md). A midpoint is half of each of its
-// ends, so every point's weights are still over the vertices of one tet of the mesh, and
-// `place` follows any placement.
+// Planar within a tet, the crack bends at the tets' faces, by the linear interpolation's error in
+// chi's direction, which grows with the tet's size over sigma (and with its flatness). So the last
+// cut is made on the crack tets split 1:8 (crack_refinement.h): the tets where the largest piece is
+// not the same at all four vertices or leads the next by less than 0.1 (0.05 left more of the crack
+// tets' midpoints linear and bent the crack around a ball more, 0.2 and 0.4 gave the demo the same
+// creases), each into eight at its edges' midpoints, where chi is the Gaussian sum itself at the
+// midpoint's place (but a split edge of a whole tet gets the mean of its ends', so that a face
+// between a split tet and a whole one is linear on both sides). The planes then span half a tet,
+// and the bends between the crack's triangles halve (the demo's faired cells: creases within one
+// interface 4.0 -> 1.9 by crack_creases.h's measure, docs/log.md). A midpoint is half of each of
+// its ends, so every point's weights are still over the vertices of one tet of the mesh, and
+// `place` follows any placement. The cut after the fit's last round is made on the split tets
+// straight away, and its volumes decide the holds (a piece held is then cut again, on split tets
+// too): the split cells keep their tets' volume as the whole ones do, and an arrangement of the
+// whole tets first would be one more; when the fit settles earlier, its field is cut again on the
+// split tets.
 //
 // Both sides of a crack are the same points. Each point of the arrangement is named by what
 // defines it: the smallest tet-mesh simplex that holds it (a vertex, an edge, a face or a tet, by

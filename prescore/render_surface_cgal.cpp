@@ -1,9 +1,10 @@
 // Render surfaces by corefinement (CGAL 5.5: Polygon_mesh_processing::
 // corefine_and_compute_intersection on Surface_mesh, Epick: exact predicates, the new points
 // rounded to doubles). The design is in render_surface.h. Faces of the result are told apart by
-// where they lie: a face within 1e-7 diagonals of an input triangle is a piece of it (Outer,
-// smooth normals interpolated from that triangle's corner normals), any other face comes from
-// the cell and takes the kind of the nearest cell face (flat).
+// where they lie: a face that is a cell face as it was (the same corners) is that face, with its
+// kind (flat); a face within 1e-7 diagonals of an input triangle is a piece of it (Outer, smooth
+// normals interpolated from that triangle's corner normals); any other face comes from the cell
+// and takes the kind of the nearest cell face (flat).
 #include "prescore/render_surface.h"
 
 #include <algorithm>
@@ -301,6 +302,37 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
         }
         return it->second;
     };
+    // A face of the cut that is one of the cell's faces as it was (the corefinement keeps the
+    // points of the faces it does not cut, the same doubles) is that face, and takes its kind
+    // without the two nearest-face searches below: most of a piece's crack faces lie inside the
+    // surface, uncut (with the crack tets split, three quarters of the demo's cut faces). Keyed
+    // by the corners' positions in ascending order; a position key two cell faces share is left
+    // to the searches.
+    using Corners = std::array<double, 9>;
+    const auto corners = [](std::array<Vec3, 3> q) {
+        const auto before = [](const Vec3& a, const Vec3& b) {
+            return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        };
+        std::sort(q.begin(), q.end(), before);
+        Corners c;
+        for (int i = 0; i < 3; ++i)
+            for (int d = 0; d < 3; ++d) c[size_t(3 * i + d)] = q[size_t(i)][d];
+        return c;
+    };
+    std::vector<std::pair<Corners, int>> own;  // kind, or -1 for a key shared
+    own.reserve(cell.triangles.size());
+    for (size_t i = 0; i < cell.triangles.size(); ++i) {
+        const Tri& t = cell.triangles[i];
+        own.emplace_back(corners({pushed[t[0]], pushed[t[1]], pushed[t[2]]}), int(cell.kinds[i]));
+    }
+    std::sort(own.begin(), own.end());
+    for (size_t i = 0; i + 1 < own.size(); ++i)
+        if (own[i].first == own[i + 1].first) own[i].second = own[i + 1].second = -1;
+    const auto own_kind = [&](const std::array<Vec3, 3>& p) {
+        const Corners c = corners(p);
+        const auto it = std::lower_bound(own.begin(), own.end(), c, [](const auto& e, const Corners& x) { return e.first < x; });
+        return it != own.end() && it->first == c ? it->second : -1;
+    };
     for (auto f : out.faces()) {
         std::array<size_t, 3> vi;
         std::array<Vec3, 3> p;
@@ -311,10 +343,18 @@ RenderSurface collect(const Mesh& out, const Input& in, const Cell& cell, const 
             p[k++] = vec(out.point(v));
         }
         if (k != 3) continue;
+        Tri tri;
+        if (const int kind = own_kind(p); kind >= 0) {
+            Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
+            n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3(0, 1, 0);
+            for (int c = 0; c < 3; ++c) tri[c] = corner(vi[c], p[c], n);
+            rs.kinds.push_back(FaceKind(kind));
+            rs.triangles.push_back(tri);
+            continue;
+        }
         const Vec3 centre = (p[0] + p[1] + p[2]) / 3;
         const auto hit = in.tree.closest_point_and_primitive(tree_point(centre));
         const Vec3 q(hit.first.x(), hit.first.y(), hit.first.z());
-        Tri tri;
         if ((q - centre).norm() <= eps) {
             const size_t t = size_t(hit.second - in.triangles.cbegin());
             const Tri& src = in.mesh.triangles[t];
