@@ -6,6 +6,14 @@
 #include "simulate/spring.h"
 
 namespace shatter {
+namespace {
+
+void clear(btJointFeedback& f) {
+    for (btVector3* v : {&f.m_appliedForceBodyA, &f.m_appliedTorqueBodyA, &f.m_appliedForceBodyB, &f.m_appliedTorqueBodyB})
+        v->setZero();
+}
+
+}  // namespace
 
 CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& b, const btVector3& pivot_in_a,
                                                    const btVector3& pivot_in_b, double stiffness, double damping,
@@ -13,6 +21,7 @@ CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& 
     : btPoint2PointConstraint(a, b, pivot_in_a, pivot_in_b), k_(stiffness), c_(damping), h_(h) {
     setParam(BT_CONSTRAINT_ERP, btScalar(spring_erp(k_, c_, h_)), -1);  // only axis -1 is honoured
     setJointFeedback(&feedback_);
+    clear(push_feedback_);
 }
 
 Vec3 CompliantPointConstraint::row_inverse_masses() const {
@@ -36,6 +45,7 @@ void CompliantPointConstraint::set_step(double h) {
 
 void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
     btPoint2PointConstraint::getInfo2(info);
+    clear(push_feedback_);  // solved again: the solver's write-back sets it when the step pushes
     // A driven (kinematic) body is already where its script has it at the step's end when the
     // joints are solved, and its motion within the step comes in again through its velocity: the
     // error is counted from where its pivot was at the step's start, so that the drive moves the
