@@ -68,9 +68,9 @@ FixedAndAuto run_both(const Shot& shot, const Model& model, const Vec3& nudge, c
 // same breaks, the first within a frame, the same fragments; over the shot's 1.5 s the plate's own
 // drop in kPlateAutoSteps or fewer, the probes undone counted. How long the breaks go on, and so
 // how many blocks run fine, is chaotic: over twelve drops 0.1 um apart the count ranges over a
-// factor of two (docs/log.md), so the three drops' mean is held to kPlateAutoSteps and each drop's count
-// is pinned (tests/pins/figures.tsv); every break from a fine step (shorter than the probe's
-// block). The cubes' kinetic energy 0.1 s after the first break is chaotic too: the drop 0.1 um
+// factor of two (docs/log.md), so the three drops' mean is held to kPlateAutoSteps and each
+// drop's count is pinned (tests/pins/figures.tsv); every break from a fine step (shorter than the
+// probe's block). The cubes' kinetic energy 0.1 s after the first break is chaotic too: the drop 0.1 um
 // higher or lower moves it by up to 30% at either step. So the means over the three drops are
 // compared, within 20% (both means pinned too).
 TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
@@ -199,7 +199,8 @@ TEST(AutoStep, TheChainBreaksWhereElevenSpringsInSeriesReachTheirStrength) {
     ASSERT_EQ(r.breaks.size(), 1u);
     const double fixed_steps = shot.simulate.duration * shot.simulate.fps * shot.simulate.substeps;
     const double fine_block = std::round(kAutoBlock / r.breaks.front().step);  // it breaks in a fine step
-    EXPECT_LE(double(r.steps + r.rejected_steps), fixed_steps / 20 + fine_block) << r.steps << " + " << r.rejected_steps;
+    EXPECT_LE(double(r.steps + r.rejected_steps), fixed_steps / 20 + fine_block)
+        << r.steps << " + " << r.rejected_steps;
     expect_pinned("auto_step.chain.steps", double(r.steps + r.rejected_steps));
     const double area = model.constraints.front().area;
     const double k = shot.material.stiffness * area, f = shot.material.strength * area;
