@@ -130,11 +130,6 @@ struct BulletWorld::Impl {
     Vec3 gravity = Vec3::Zero();
 
     static double stored_energy_of(const Joint& j);
-    // The force on A that the joint's stretch holds at the step's end: the solve's (its feedback,
-    // the impulse the step applied) and the push's load (CompliantPointConstraint::push_feedback).
-    static btVector3 load_on_a(const CompliantPointConstraint& k) {
-        return k.feedback().m_appliedForceBodyA + k.push_feedback().m_appliedForceBodyA;
-    }
 
     // A kinematic body's or projectile's shape: a sphere or a box, owned by `shapes`.
     btCollisionShape* prop_shape(const ShapeSettings& s) {

@@ -103,7 +103,7 @@ Vec3 BulletWorld::force_on_a(size_t c) const {
 
 Vec3 BulletWorld::load_on_a(size_t c) const {
     const auto& j = impl_->joints[c];
-    return j.constraint ? to_eigen(Impl::load_on_a(*j.constraint)) : Vec3::Zero();
+    return j.constraint ? to_eigen(j.constraint->load().m_appliedForceBodyA) : Vec3::Zero();
 }
 
 bool BulletWorld::bullet_disabled(size_t c) const {
@@ -147,7 +147,7 @@ BulletWorld::JointStretch BulletWorld::joint_stretch(size_t c) const {
     out.stretch = to_eigen(pb - pa);
     out.rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
                         a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
-    out.force_on_a = to_eigen(Impl::load_on_a(k));
+    out.force_on_a = to_eigen(k.load().m_appliedForceBodyA);
     return out;
 }
 

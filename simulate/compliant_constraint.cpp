@@ -36,6 +36,15 @@ Vec3 CompliantPointConstraint::row_inverse_masses() const {
     return w;
 }
 
+btJointFeedback CompliantPointConstraint::load() const {
+    btJointFeedback sum;
+    sum.m_appliedForceBodyA = feedback_.m_appliedForceBodyA + push_feedback_.m_appliedForceBodyA;
+    sum.m_appliedTorqueBodyA = feedback_.m_appliedTorqueBodyA + push_feedback_.m_appliedTorqueBodyA;
+    sum.m_appliedForceBodyB = feedback_.m_appliedForceBodyB + push_feedback_.m_appliedForceBodyB;
+    sum.m_appliedTorqueBodyB = feedback_.m_appliedTorqueBodyB + push_feedback_.m_appliedTorqueBodyB;
+    return sum;
+}
+
 double CompliantPointConstraint::row_cfm(double w) const { return spring_cfm(k_, c_, h_, w); }
 
 void CompliantPointConstraint::set_step(double h) {

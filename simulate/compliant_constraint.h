@@ -43,6 +43,9 @@ public:
     // stretch at the step's end is both, and so is what it holds and stores.
     btJointFeedback& push_feedback() { return push_feedback_; }
     const btJointFeedback& push_feedback() const { return push_feedback_; }
+    // What its stretch holds at the step's end: feedback() and push_feedback() together, the load
+    // that breaks it and that it stores.
+    btJointFeedback load() const;
 
 private:
     double k_, c_, h_;
