@@ -396,7 +396,7 @@ TEST(RunCommand, WithoutFfmpegTheOtherOutputsAreStillMade) {
 
 // File names are bytes, never commands: a shot, mesh and output folder named with spaces, quotes,
 // $(...), backticks, semicolons, a newline and non-ASCII letters go through every stage,
-// ffmpeg and matplotlib included, and nothing they spell is run.
+// ffmpeg included, and nothing they spell is run.
 TEST(RunCommand, HostileNamesWorkEverywhereAndRunNothing) {
     TempDir dir;
     const std::string hostile = "it's \"$(touch pwned)\" `touch pwned`; touch pwned\nZ\u00fcrich \u00e9t\u00e9 %d";
