@@ -295,7 +295,7 @@ private:
              .compute = [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); },
              .what = "the energy plot"},
             {.stage = Stage::Export, .kind = StageKind::Finishing,
-             .inputs = [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}}; },
+             .inputs = [&] { return render_inputs(); },  // render's colours and interior texture
              .files = {{"", name_ + ".glb"}},
              .compute = [&] { export_glb(model(), trajectory(), file(".glb"), &shot_.render); }, .what = "the glTF file"},
             // summary.json is written at the report's place, whether the report is asked or not.
