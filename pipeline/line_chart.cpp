@@ -20,6 +20,9 @@ constexpr Rgb kBlack{0, 0, 0};
 
 double px(double points) { return points * kDpi / 72; }
 
+// A value the axes can hold: finite, and small enough that a range of two of them is too.
+bool drawable(double v) { return std::isfinite(v) && std::abs(v) < 1e150; }
+
 // matplotlib's rcParams, in points: font sizes, the padding of tight_layout, ticks and labels.
 constexpr double kFontPt = 10, kTitlePt = 12, kSmallPt = 10 * 0.833;
 constexpr double kLayoutPad = 1.08 * kFontPt, kTickLength = 3.5, kTickPad = 3.5, kLabelPad = 4, kTitlePad = 6;
@@ -386,7 +389,7 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
     for (const ChartSeries& s : chart.series)
         for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-            if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+            if (!drawable(s.x[i]) || !drawable(s.y[i])) continue;
             x_lo = std::min(x_lo, s.x[i]), x_hi = std::max(x_hi, s.x[i]);
             y_lo = std::min(y_lo, s.y[i]), y_hi = std::max(y_hi, s.y[i]);
         }
@@ -433,7 +436,7 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     for (size_t k = 0; k < chart.series.size(); ++k) {
         const ChartSeries& s = chart.series[k];
         for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
-            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) drawn[k].push_back(to_px(s.x[i], s.y[i]));
+            if (drawable(s.x[i]) && drawable(s.y[i])) drawn[k].push_back(to_px(s.x[i], s.y[i]));
         if (drawn[k].empty()) continue;
         Coverage c{int(width), int(height)};
         polyline(c, drawn[k], s.dash, px(s.width), axes);

@@ -82,5 +82,43 @@ TEST(LineChart, ValuesLieOnALinearAxis) {
     EXPECT_EQ(draw_chart(chart).rgb, img.rgb);  // the same pixels again
 }
 
+// Whatever the numbers, a chart of the fixed size: one value, equal values, values too large for
+// a range (left out), none at all. A constant line sits halfway up its axes (its 5% margins).
+TEST(LineChart, DegenerateDataStillDraws) {
+    for (const std::vector<double>& ys : std::vector<std::vector<double>>{
+             {1e300, -1e300}, {5, 5}, {0, 0}, {1e-300, 2e-300}, {1e30, 1e30 * (1 + 1e-9)}, {-3, INFINITY}}) {
+        LineChart c;
+        ChartSeries s;
+        s.x = {0, 1};
+        s.y = ys;
+        s.colour = tab10(0);
+        c.series.push_back(s);
+        const Image img = draw_chart(c);
+        EXPECT_EQ(img.width, 800u);
+        EXPECT_EQ(img.height, 450u);
+    }
+    LineChart flat;
+    ChartSeries s;
+    s.x = {0, 1, 2};
+    s.y = {5, 5, 5};
+    s.colour = tab10(0);
+    flat.series.push_back(s);
+    const Image img = draw_chart(flat);
+    const auto rows = rows_of(img, 400, tab10(0));
+    ASSERT_FALSE(rows.empty());
+    // The axes' frame: the first dark rows in column 400 above and below the line (its spines).
+    const int line = int(*middle(rows));
+    const auto dark = [&](int y) {
+        const uint8_t* p = img.pixel(400, uint32_t(y));
+        return p[0] < 160 && p[1] < 160 && p[2] < 160;
+    };
+    int top = line - 3, bottom = line + 3;
+    while (top > 0 && !dark(top)) --top;
+    while (bottom + 1 < int(img.height) && !dark(bottom)) ++bottom;
+    EXPECT_NEAR(line, 0.5 * (top + bottom), 2.0) << "spines at rows " << top << " and " << bottom;
+    LineChart none;
+    EXPECT_EQ(draw_chart(none).width, 800u);
+}
+
 }  // namespace
 }  // namespace shatter
