@@ -279,7 +279,7 @@ private:
              .what = "the movie", .needs_frames = true,
              .compute_beside = [&] {
                  encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4"),
-                            [&](uint32_t f) { return frame_drawn(f); });
+                            [&](uint32_t f) { return frame_drawn(f); }, &pixels_);
              }},
             {.stage = Stage::Sheet, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
              .files = {{"", name_ + ".contact.png"}},
@@ -556,6 +556,7 @@ private:
         for (Stage s : {Stage::Encode, Stage::Sheet, Stage::Plot, Stage::Export}) {
             if (!asked(s) || ((s == Stage::Encode || s == Stage::Sheet) && options_.chunks != 1)) continue;
             const StageStep* step = &step_of(s);
+            encoding_beside_ = encoding_beside_ || s == Stage::Encode;
             beside_.push_back({s, std::async(std::launch::async, [this, step] { return finish_beside_render(*step); })});
         }
     }
@@ -623,6 +624,12 @@ private:
         RenderOptions ro;
         ro.progress = options_.progress;
         ro.skip_existing = true;
+        // Encode, beside render, takes the frames' pixels from memory (it reads the files of those
+        // that do not fit, and of frames drawn before).
+        if (encoding_beside_)
+            ro.on_pixels = [this](uint32_t f, uint32_t w, uint32_t h, const std::vector<uint8_t>& rgb) {
+                pixels_.put(f, w, h, rgb);
+            };
         ro.size_source = options_.shot + ": [render] width, height";
         const auto [first, end] = chunk_frames(trajectory().frames(), options_.chunk, options_.chunks);
         const FrameRange range{first, end};
@@ -700,6 +707,8 @@ private:
     std::vector<StageStep> steps_;
     std::vector<Beside> beside_;
     std::atomic<bool> render_over_{true};
+    FramePixels pixels_;           // frames' pixels from render to encode beside it
+    bool encoding_beside_ = false;  // (set before render starts)
 };
 
 }  // namespace
