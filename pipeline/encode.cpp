@@ -11,8 +11,8 @@
 // as each frame is ready: from render's memory when it left them (FramePixels), else decoded
 // from the PNG; so the movie is encoded while render draws the frames (pipeline/run.cpp), and
 // ffmpeg never parses a frame's file name. The pixels and the options being the same, the bytes
-// are those of ffmpeg decoding frame_%05d.png itself (measured on the demo: the same MP4). The output is an
-// absolute "file:" URL, so a ':' in it cannot be read as a protocol. Arguments go as an argv
+// are those of ffmpeg decoding frame_%05d.png itself (measured on the demo: the same MP4). The
+// output is an absolute "file:" URL, so a ':' in it cannot be read as a protocol. Arguments go as an argv
 // vector (pipeline/process.h): no shell ever sees a name.
 #include "pipeline/encode.h"
 
@@ -130,7 +130,8 @@ void encode_mp4(const std::string& frames_dir, uint32_t frames, double fps, cons
     ToolOutput output(mp4_path, ".mp4");  // removed again unless committed
     ProcessOptions options;
     options.stdin_stream = true;
-    std::optional<ChildProcess> child;  // started with frame 0, whose size is the movie's; killed unless waited for
+    // Started with frame 0, whose size is the movie's; killed unless waited for.
+    std::optional<ChildProcess> child;
     uint32_t width = 0, height = 0;
     for (uint32_t i = 0; i < frames; ++i) {
         const std::string frame = (fs::path(frames_dir) / frame_name(i)).string();
