@@ -158,8 +158,10 @@ public:
     Runner& operator=(const Runner&) = delete;
 
     RunResult run() {
-        // A missing mesh is bad input found before the output folder is touched.
+        // A missing mesh, or interior texture, is bad input found before the output folder is touched.
         if (!shot_.mesh.path.empty() && !shot_.generate) file_hash(shot_.mesh.path);
+        if (!shot_.render.interior_texture.empty() && asked(Stage::Render))
+            read_file(shot_.render.interior_texture, "[render] interior_texture");
         make_directories(dir_.string());
         if (options_.chunks == 1) remove_stale_temporaries();
         AttachedSink log(run_log_sink((dir_ / "run.log").string()));

@@ -367,6 +367,13 @@ TEST(RunCommand, MissingMeshMalformedShotAndUnknownKeysAreClearErrors) {
     EXPECT_NE(r.err.find("unknown.toml:4"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("did you mean 'alpha'"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir.file("c")));
+    // An interior texture that is not there: refused before the output folder is made (the path
+    // is the shot folder's), not after prescore and simulate.
+    const std::string texture = dir.write("texture.toml", "[mesh]\npath = \"cube.obj\"\n[render]\ninterior_texture = \"stone.png\"\n");
+    r = run_shatter({"run", texture, "-o", dir.file("d")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find(dir.file("stone.png")), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("d")));
 }
 
 // Without ffmpeg the movie cannot be made: exit code 6 with the fix, and every other output is
