@@ -396,8 +396,8 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     data_range(x_lo, x_hi);
     data_range(y_lo, y_hi);
 
-    // tight_layout: the axes box grows until the labels around it fit the figure; twice, as the
-    // ticks (and so the labels' widths) follow the box's size.
+    // tight_layout: the axes box fitted to the labels around it, three times over, as the ticks
+    // (and so the labels' widths) follow the box's size.
     const double pad = px(kLayoutPad), tick = px(kTickLength), tick_pad = px(kTickPad), label_pad = px(kLabelPad);
     Box axes{pad + 60, pad + 30, width - pad - 10.0, height - pad - 40.0};
     Axis xa, ya;
