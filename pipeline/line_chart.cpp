@@ -50,13 +50,20 @@ const TrueType& dejavu() {
     return font;
 }
 
-// A grey-level image: a line of text, or a series' lines, before they are laid on the chart.
+// A grey-level image: a line of text, or a series' lines, before they are laid on the chart; the
+// box its lines touched (x0..x1, y0..y1; empty when x1 < x0), so that laying it walks that alone.
 struct Coverage {
     int width = 0, height = 0;
     std::vector<float> a;
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
     Coverage(int w, int h) : width(std::max(w, 0)), height(std::max(h, 0)), a(size_t(width) * size_t(height), 0.f) {}
     float& at(int x, int y) { return a[size_t(y) * size_t(width) + size_t(x)]; }
     float at(int x, int y) const { return a[size_t(y) * size_t(width) + size_t(x)]; }
+    void touch(int left, int top, int right, int bottom) {
+        if (right < left || bottom < top) return;
+        if (x1 < x0) x0 = left, y0 = top, x1 = right, y1 = bottom;
+        x0 = std::min(x0, left), y0 = std::min(y0, top), x1 = std::max(x1, right), y1 = std::max(y1, bottom);
+    }
 };
 
 void blend(Image& image, int x, int y, Rgb c, double alpha) {
@@ -86,17 +93,10 @@ public:
     double height() const { return ascent() + descent(); }
     double width(std::string_view s) const {
         if (fallback_) return text_width(plain(s), fallback_);
-        const TrueType& f = dejavu();
         double w = 0;
         for (size_t i = 0; i < s.size();) {
             const char32_t c = next_code_point(s, i);
-            int advance = 0, lsb = 0;
-            stbtt_GetCodepointHMetrics(&f.info, int(c), &advance, &lsb);
-            w += advance * scale_;
-            if (i < s.size()) {
-                size_t j = i;
-                w += scale_ * stbtt_GetCodepointKernAdvance(&f.info, int(c), int(next_code_point(s, j)));
-            }
+            w += advance(c, s, i);
         }
         return w;
     }
@@ -131,13 +131,7 @@ public:
                         out.at(ox, oy) = std::min(1.f, out.at(ox, oy) + glyph[size_t(gy) * size_t(w) + size_t(gx)] / 255.f);
                     }
             }
-            int advance = 0, lsb = 0;
-            stbtt_GetCodepointHMetrics(&f.info, int(c), &advance, &lsb);
-            pen += advance * scale_;
-            if (i < s.size()) {
-                size_t j = i;
-                pen += scale_ * stbtt_GetCodepointKernAdvance(&f.info, int(c), int(next_code_point(s, j)));
-            }
+            pen += advance(c, s, i);
         }
         return out;
     }
@@ -158,6 +152,16 @@ public:
     }
 
 private:
+    // How far the pen moves past code point `c` of DejaVu Sans, the next being the one at byte
+    // `next` of `s` (kerning included).
+    double advance(char32_t c, std::string_view s, size_t next) const {
+        const TrueType& f = dejavu();
+        int width = 0, lsb = 0;
+        stbtt_GetCodepointHMetrics(&f.info, int(c), &width, &lsb);
+        double pen = width * scale_;
+        if (next < s.size()) pen += scale_ * stbtt_GetCodepointKernAdvance(&f.info, int(c), int(next_code_point(s, next)));
+        return pen;
+    }
     // For the built-in font, which has no minus sign (U+2212): a hyphen.
     static std::string plain(std::string_view s) {
         constexpr std::string_view minus = "\u2212";
@@ -192,6 +196,7 @@ void segment(Coverage& c, Point p, Point q, double half_width, bool butt, const 
     const int x1 = std::min(int(std::ceil(std::min(std::max(p.x, q.x) + reach, clip.right))), c.width - 1);
     const int y0 = std::max(int(std::floor(std::max(std::min(p.y, q.y) - reach, clip.top))), 0);
     const int y1 = std::min(int(std::ceil(std::min(std::max(p.y, q.y) + reach, clip.bottom))), c.height - 1);
+    c.touch(x0, y0, x1, y1);
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
             const double cx = x + 0.5 - p.x, cy = y + 0.5 - p.y;
@@ -258,16 +263,20 @@ void fill(Image& image, const Box& box, Rgb colour, double alpha) {
         for (int x = int(std::lround(box.left)); x < int(std::lround(box.right)); ++x) blend(image, x, y, colour, alpha);
 }
 
-void lay(Image& image, const Coverage& c, Rgb colour, double alpha = 1) {
-    for (int y = 0; y < c.height; ++y)
-        for (int x = 0; x < c.width; ++x) blend(image, x, y, colour, alpha * c.at(x, y));
+// `c` laid on the image in `colour`, and cleared for the next lines.
+void lay(Image& image, Coverage& c, Rgb colour, double alpha = 1) {
+    for (int y = c.y0; y <= c.y1; ++y)
+        for (int x = c.x0; x <= c.x1; ++x) {
+            blend(image, x, y, colour, alpha * c.at(x, y));
+            c.at(x, y) = 0;
+        }
+    c.x0 = c.y0 = 0, c.x1 = c.y1 = -1;
 }
 
-// A straight line of `width` points from p to q, laid at once.
-void rule(Image& image, Point p, Point q, double width, Rgb colour, double alpha = 1) {
-    Coverage c{int(image.width), int(image.height)};
-    segment(c, p, q, px(width) / 2, true, Box{0, 0, double(image.width), double(image.height)});
-    lay(image, c, colour, alpha);
+// A straight line of `width` points from p to q, laid at once (drawn into `scratch`, the image's size).
+void rule(Image& image, Coverage& scratch, Point p, Point q, double width, Rgb colour, double alpha = 1) {
+    segment(scratch, p, q, px(width) / 2, true, Box{0, 0, double(image.width), double(image.height)});
+    lay(image, scratch, colour, alpha);
 }
 
 // An axis: its ticks over the data range with margins, their labels, and the power of ten they
@@ -385,6 +394,7 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     Image image(width, height);
     std::fill(image.rgb.begin(), image.rgb.end(), uint8_t(255));
     const Text font(kFontPt), title_font(kTitlePt), legend_font(chart.small_legend ? kSmallPt : kFontPt);
+    Coverage scratch{int(width), int(height)};  // each line's coverage before it is laid
 
     double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
     for (const ChartSeries& s : chart.series)
@@ -401,10 +411,11 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     const double pad = px(kLayoutPad), tick = px(kTickLength), tick_pad = px(kTickPad), label_pad = px(kLabelPad);
     Box axes{pad + 60, pad + 30, width - pad - 10.0, height - pad - 40.0};
     Axis xa, ya;
+    double widest = 0;  // of the y labels
     for (int round = 0; round < 3; ++round) {
         xa = make_axis(x_lo, x_hi, axes.right - axes.left, 3);
         ya = make_axis(y_lo, y_hi, axes.bottom - axes.top, 2);
-        double widest = 0;
+        widest = 0;
         for (const std::string& l : ya.labels) widest = std::max(widest, font.width(l));
         const double left = pad + (chart.y_label.empty() ? 0 : font.height() + label_pad) + widest + tick_pad + tick;
         const double bottom = pad + (chart.x_label.empty() ? 0 : font.height() + label_pad) + font.height() + tick_pad + tick;
@@ -424,11 +435,11 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
     const Rgb grid{0xb0, 0xb0, 0xb0};
     for (double t : xa.ticks) {
         const double x = to_px(t, 0).x;
-        rule(image, {x, axes.top}, {x, axes.bottom}, kAxisWidth, grid, 0.3);
+        rule(image, scratch, {x, axes.top}, {x, axes.bottom}, kAxisWidth, grid, 0.3);
     }
     for (double t : ya.ticks) {
         const double y = to_px(0, t).y;
-        rule(image, {axes.left, y}, {axes.right, y}, kAxisWidth, grid, 0.3);
+        rule(image, scratch, {axes.left, y}, {axes.right, y}, kAxisWidth, grid, 0.3);
     }
 
     // The series, each laid at once from its own coverage.
@@ -438,25 +449,24 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
         for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
             if (drawable(s.x[i]) && drawable(s.y[i])) drawn[k].push_back(to_px(s.x[i], s.y[i]));
         if (drawn[k].empty()) continue;
-        Coverage c{int(width), int(height)};
-        polyline(c, drawn[k], s.dash, px(s.width), axes);
-        lay(image, c, s.colour);
+        polyline(scratch, drawn[k], s.dash, px(s.width), axes);
+        lay(image, scratch, s.colour);
     }
 
     // Spines, ticks and their labels.
-    rule(image, {axes.left, axes.top}, {axes.right, axes.top}, kAxisWidth, kBlack);
-    rule(image, {axes.left, axes.bottom}, {axes.right, axes.bottom}, kAxisWidth, kBlack);
-    rule(image, {axes.left, axes.top}, {axes.left, axes.bottom}, kAxisWidth, kBlack);
-    rule(image, {axes.right, axes.top}, {axes.right, axes.bottom}, kAxisWidth, kBlack);
+    rule(image, scratch, {axes.left, axes.top}, {axes.right, axes.top}, kAxisWidth, kBlack);
+    rule(image, scratch, {axes.left, axes.bottom}, {axes.right, axes.bottom}, kAxisWidth, kBlack);
+    rule(image, scratch, {axes.left, axes.top}, {axes.left, axes.bottom}, kAxisWidth, kBlack);
+    rule(image, scratch, {axes.right, axes.top}, {axes.right, axes.bottom}, kAxisWidth, kBlack);
     for (size_t i = 0; i < xa.ticks.size(); ++i) {
         const double x = to_px(xa.ticks[i], 0).x;
-        rule(image, {x, axes.bottom}, {x, axes.bottom + tick}, kAxisWidth, kBlack);
+        rule(image, scratch, {x, axes.bottom}, {x, axes.bottom + tick}, kAxisWidth, kBlack);
         font.draw(image, x - font.width(xa.labels[i]) / 2, axes.bottom + tick + tick_pad + font.ascent(), xa.labels[i],
                   kBlack);
     }
     for (size_t i = 0; i < ya.ticks.size(); ++i) {
         const double y = to_px(0, ya.ticks[i]).y;
-        rule(image, {axes.left - tick, y}, {axes.left, y}, kAxisWidth, kBlack);
+        rule(image, scratch, {axes.left - tick, y}, {axes.left, y}, kAxisWidth, kBlack);
         // Centred on the tick by the digits' height (0.73 em in DejaVu Sans).
         font.draw(image, axes.left - tick - tick_pad - font.width(ya.labels[i]), y + 0.365 * px(kFontPt), ya.labels[i],
                   kBlack);
@@ -489,10 +499,10 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
         }
         fill(image, best, Rgb{255, 255, 255}, 0.8);
         const Rgb edge{0xcc, 0xcc, 0xcc};
-        rule(image, {best.left, best.top}, {best.right, best.top}, kAxisWidth, edge);
-        rule(image, {best.left, best.bottom}, {best.right, best.bottom}, kAxisWidth, edge);
-        rule(image, {best.left, best.top}, {best.left, best.bottom}, kAxisWidth, edge);
-        rule(image, {best.right, best.top}, {best.right, best.bottom}, kAxisWidth, edge);
+        rule(image, scratch, {best.left, best.top}, {best.right, best.top}, kAxisWidth, edge);
+        rule(image, scratch, {best.left, best.bottom}, {best.right, best.bottom}, kAxisWidth, edge);
+        rule(image, scratch, {best.left, best.top}, {best.left, best.bottom}, kAxisWidth, edge);
+        rule(image, scratch, {best.right, best.top}, {best.right, best.bottom}, kAxisWidth, edge);
         double y = best.top + border;
         if (!chart.legend_title.empty()) {
             legend_font.draw(image, (best.left + best.right - legend_font.width(chart.legend_title)) / 2,
@@ -502,10 +512,9 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
         for (size_t k : entries) {
             const ChartSeries& s = chart.series[k];
             const double middle = y + row / 2;
-            Coverage c{int(width), int(height)};
-            polyline(c, {{best.left + border, middle}, {best.left + border + handle, middle}}, s.dash, px(s.width),
-                     Box{0, 0, double(width), double(height)});
-            lay(image, c, s.colour);
+            polyline(scratch, {{best.left + border, middle}, {best.left + border + handle, middle}}, s.dash,
+                     px(s.width), Box{0, 0, double(width), double(height)});
+            lay(image, scratch, s.colour);
             legend_font.draw(image, best.left + border + handle + handle_pad, y + legend_font.ascent(), s.label, kBlack);
             y += row + spacing;
         }
@@ -520,8 +529,6 @@ Image draw_chart(const LineChart& chart, uint32_t width, uint32_t height) {
         font.draw(image, axes.left + (aw - font.width(chart.x_label)) / 2,
                   axes.bottom + tick + tick_pad + font.height() + label_pad + font.ascent(), chart.x_label, kBlack);
     if (!chart.y_label.empty()) {
-        double widest = 0;
-        for (const std::string& l : ya.labels) widest = std::max(widest, font.width(l));
         font.draw_up(image, axes.left - tick - tick_pad - widest - label_pad - font.height(), axes.top + ah / 2,
                      chart.y_label, kBlack);
     }
