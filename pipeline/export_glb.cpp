@@ -50,7 +50,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -61,7 +60,6 @@
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
 #include "core/utf8.h"
-#include "meshio/image_decode.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
 #include "render/png_io.h"
@@ -221,10 +219,7 @@ struct CrackUv {
         lo = Vec3::Constant(1e300);
         for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
         if (model.mesh.vertices.empty()) lo = hi = Vec3::Zero();
-        const double diagonal = std::max((hi - lo).norm(), 1e-12);
-        unit = look.interior_texture.empty()        ? diagonal
-               : look.interior_texture_size > 0     ? look.interior_texture_size
-                                                    : std::max(diagonal / 4, 1e-6);
+        unit = look.interior_texture.empty() ? std::max((hi - lo).norm(), 1e-12) : interior_texture_span(model, look);
     }
     void set(Vertex& v, const Vec3& centre) const {
         const Vec3 x = (Vec3(v.position[0], v.position[1], v.position[2]) + centre - lo) / unit;
@@ -293,15 +288,13 @@ aiTexture* embedded(const std::string& bytes, const std::string& hint, const std
 // [render] interior_texture as an embedded image, PNG or JPEG as it is, else decoded and stored as
 // PNG; Error(BadInput) naming the file when it does not decode.
 void add_interior_texture(SceneParts& parts, const std::string& path) {
-    std::string bytes = read_file(path, "[render] interior_texture"), why;
-    const std::optional<DecodedImage> image = decode_image(bytes, &why);
-    if (!image)
-        throw_input_error(path, "[render] interior_texture cannot be decoded: " + why,
-                          "give a PNG, JPEG, TGA, BMP or WebP image");
+    InteriorTexture texture = read_interior_texture(path);
+    std::string& bytes = texture.bytes;
+    const DecodedImage& image = texture.image;
     const bool png = bytes.rfind("\x89PNG", 0) == 0, jpeg = bytes.rfind("\xFF\xD8\xFF", 0) == 0;
     std::string name = std::filesystem::path(path).filename().string();
     if (!png && !jpeg) {
-        bytes = encode_png(image->rgba.data(), image->width, image->height, 4, size_t(image->width) * 4);
+        bytes = encode_png(image.rgba.data(), image.width, image.height, 4, size_t(image.width) * 4);
         name = std::filesystem::path(path).stem().string() + ".png";
     }
     parts.interior = int(parts.textures.size());

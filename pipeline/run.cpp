@@ -17,7 +17,6 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.h"
-#include "core/binary_io.h"
 #include "core/error.h"
 #include "core/generate_settings.h"
 #include "core/model_io.h"
@@ -500,12 +499,7 @@ private:
     json render_inputs() {
         json in = {{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}};
         // An interior texture by its bytes: an image changed under the same name draws again.
-        if (!shot_.render.interior_texture.empty()) {
-            std::error_code ec;
-            in["interior_texture"] = fs::exists(shot_.render.interior_texture, ec)
-                                         ? fmt::format("{:016x}", fnv1a64(read_file(shot_.render.interior_texture, "interior texture")))
-                                         : std::string("missing");
-        }
+        if (!shot_.render.interior_texture.empty()) in["interior_texture"] = file_hash(shot_.render.interior_texture);
         return in;
     }
     const std::string& render_key() {

@@ -9,9 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "meshio/image_decode.h"
 #include "render/edge_filter.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
@@ -94,24 +92,14 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
 
 void FrameRenderer::load_interior_texture() {
     const std::string& path = settings_.interior_texture;
-    std::string why;
-    const std::optional<DecodedImage> image = decode_image(read_file(path, "[render] interior_texture"), &why);
-    if (!image)
-        throw_input_error(path, "[render] interior_texture cannot be decoded: " + why,
-                          "give a PNG, JPEG, TGA, BMP or WebP image");
-    if (std::max(image->width, image->height) > kMaxTextureSide)
-        throw_input_error(path, fmt::format("[render] interior_texture is {} x {} texels, over {} a side", image->width,
-                                            image->height, kMaxTextureSide),
+    const DecodedImage image = read_interior_texture(path).image;
+    if (std::max(image.width, image.height) > kMaxTextureSide)
+        throw_input_error(path, fmt::format("[render] interior_texture is {} x {} texels, over {} a side", image.width,
+                                            image.height, kMaxTextureSide),
                           "give a smaller image (repeats cost nothing: interior_texture_size sets their span)");
     interior_texture_ = int(textures_.size());
-    textures_.push_back(std::make_unique<GpuTexture>(*image));
-    double size = settings_.interior_texture_size;
-    if (!(size > 0)) {
-        Eigen::AlignedBox3d box;
-        for (const Vec3& v : scene_.model->mesh.vertices) box.extend(v);
-        size = box.isEmpty() ? 1.0 : std::max(box.diagonal().norm() / 4, 1e-6);
-    }
-    interior_repeat_ = float(1 / size);
+    textures_.push_back(std::make_unique<GpuTexture>(image));
+    interior_repeat_ = float(1 / interior_texture_span(*scene_.model, settings_));
 }
 
 void FrameRenderer::add_piece(uint32_t i) {
@@ -129,14 +117,7 @@ void FrameRenderer::add_piece(uint32_t i) {
         items_.push_back(std::move(item));
         return;
     }
-    IndexedVertices all;
-    if (piece.render) {
-        all = piece_mesh(piece, i, settings_, looks_);
-    } else {
-        all.vertices = piece_vertices(piece, i, settings_);
-        all.indices.resize(all.vertices.size());
-        for (uint32_t k = 0; k < all.indices.size(); ++k) all.indices[k] = k;
-    }
+    IndexedVertices all = piece_mesh(piece, i, settings_, looks_);
     if (interior_texture_ >= 0) {
         // Fracture faces sample the interior texture, in interior_colour or white (their vertices
         // are their own: a vertex has a copy per face kind).
