@@ -50,6 +50,13 @@ struct RenderSettings {
     // Fracture faces in this colour (linear RGB), textured or not; unset: the colour of the
     // material around them (its base colour times its texture's mean) tinted by fracture_tint.
     std::optional<std::array<float, 3>> interior_colour;
+    // Fracture faces drawn with this image (absolute, or as given; a shot's path is made relative
+    // to its folder when read), times interior_colour when set; empty: none. Projected from the
+    // three axes in the unbroken object's frame (render/shaders.cpp), so both sides of a crack
+    // show the same texture, and one repeat spans interior_texture_size (0: a quarter of the
+    // object's bounding-box diagonal).
+    std::string interior_texture;
+    double interior_texture_size = 0;  // (unit: m)
     double fracture_tint = 0.55;          // fracture faces: this fraction of the way from the piece colour to white (unit: 1)
     double cavity_shade = 0.45;           // cavity faces: the piece colour times this (unit: 1)
     std::array<float, 3> background = {0.5776f, 0.6445f, 0.7231f};  // linear RGB ("#c8d2dd")
@@ -60,6 +67,7 @@ inline constexpr Limits kShadowMapLimits{64, 8192, "texels"};
 inline constexpr Limits kAzimuthLimits{-360, 360, "degrees"};
 inline constexpr Limits kElevationLimits{1, 90, "degrees"};
 inline constexpr Limits kTintLimits{0, 1, "(fraction)"};
+inline constexpr Limits kTextureSizeLimits{0, 1e6, "m"};
 
 const char* to_string(Colours m);
 const char* to_string(CameraMode m);

@@ -1,5 +1,7 @@
 // The [render] table (core/setting_table.h): what render reads. Colours are sRGB "#rrggbb";
 // camera_position, camera_target and piece_colours have their readers in core/shot_render.cpp.
+#include <filesystem>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -97,6 +99,25 @@ SettingsSection render_section() {
                      if (s.render.interior_colour) j["interior_colour"] = srgb_hex(*s.render.interior_colour);
                  })
                  .flag("--interior-colour"),
+             custom("interior_texture", "", "none", "an image file: PNG, JPEG, TGA, BMP or WebP",
+                    "fracture faces drawn with this image (times interior_colour when set), projected along the "
+                    "three axes of the unbroken object so that both sides of a crack show the same; relative to the "
+                    "shot file's folder",
+                    [](TomlSection& s, Shot& shot) {
+                        std::string& path = shot.render.interior_texture;
+                        if (s.text("interior_texture", path) && !path.empty() && !s.from_flag()) {
+                            const std::filesystem::path p(path);
+                            if (p.is_relative())
+                                path = (std::filesystem::path(s.file()).parent_path() / p).lexically_normal().string();
+                        }
+                    })
+                 .json([](const Shot& s, ojson& j) {
+                     if (!s.render.interior_texture.empty()) j["interior_texture"] = s.render.interior_texture;
+                 })
+                 .flag("--interior-texture"),
+             number("interior_texture_size", "m", at(&Shot::render, &RenderSettings::interior_texture_size),
+                    kTextureSizeLimits, "the span of one repeat of interior_texture; 0: a quarter of the object's "
+                    "bounding-box diagonal"),
              number("fracture_tint", "fraction", at(&Shot::render, &RenderSettings::fracture_tint), kTintLimits,
                     "fracture faces: this fraction of the way from the piece colour to white")
                  .flag("--fracture-tint"),

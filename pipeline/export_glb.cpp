@@ -138,6 +138,7 @@ struct SceneParts {
     std::vector<aiTexture*> textures;   // embedded images ("*0", "*1", ...), PNG or JPEG files
     std::vector<MaterialLook> looks;    // of the model's materials (render/texture.h)
     std::vector<int> texture_of;        // per model material, its embedded image, -1: none
+    int interior = -1;                  // [render] interior_texture's embedded image, -1: none
 
     ~SceneParts() {
         for (aiMesh* m : meshes) delete m;
@@ -171,6 +172,17 @@ struct SceneParts {
         materials.push_back(mat);
         return it->second;
     }
+    // Every piece's crack faces with [render] interior_texture: its image, in interior_colour or white.
+    unsigned interior_material(const RenderSettings& look) {
+        auto [it, added] = material_index.try_emplace("#interior", unsigned(materials.size()));
+        if (!added) return it->second;
+        aiMaterial* mat = make_material("interior_fracture", look.interior_colour.value_or(Colour{1, 1, 1}));
+        const aiString path(fmt::format("*{}", interior));
+        mat->AddProperty(&path, AI_MATKEY_TEXTURE(aiTextureType_DIFFUSE, 0));
+        mat->AddProperty(&path, AI_MATKEY_TEXTURE(aiTextureType_BASE_COLOR, 0));
+        materials.push_back(mat);
+        return it->second;
+    }
     aiNode* node(const std::string& name, const std::vector<unsigned>& mesh_ids) {
         auto* n = new aiNode(name);
         n->mNumMeshes = static_cast<unsigned>(mesh_ids.size());
@@ -195,21 +207,22 @@ bool model_has_vertex_colours(const Model& model) {
 // normals when it has one (outer faces smooth), else its tet surface, flat.
 // The crack faces' texture coordinates: a box projection of the point where it lies in the
 // unbroken object (the piece's vertex plus its centre of mass), onto the plane of the two axes
-// its face's normal is least along, over the object's bounding box (its diagonal is one unit).
+// its face's normal is least along, over the object's bounding box (its diagonal is one unit; with
+// [render] interior_texture, one repeat of it is: interior_texture_size, as render draws it).
 // Both sides of a crack are the same points with opposite normals: they get the same
 // coordinates, so that an interior texture runs on across the crack.
 struct CrackUv {
     Vec3 lo = Vec3::Zero();
-    double diagonal = 1;
-    explicit CrackUv(const Model& model) {
+    double unit = 1;
+    CrackUv(const Model& model, const RenderSettings& look) {
         Vec3 hi = Vec3::Constant(-1e300);
         lo = Vec3::Constant(1e300);
         for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
         if (model.mesh.vertices.empty()) lo = hi = Vec3::Zero();
-        diagonal = std::max((hi - lo).norm(), 1e-12);
+        unit = look.interior_texture.empty() ? std::max((hi - lo).norm(), 1e-12) : interior_texture_span(model, look);
     }
     void set(Vertex& v, const Vec3& centre) const {
-        const Vec3 x = (Vec3(v.position[0], v.position[1], v.position[2]) + centre - lo) / diagonal;
+        const Vec3 x = (Vec3(v.position[0], v.position[1], v.position[2]) + centre - lo) / unit;
         const Vec3 n = Vec3(v.normal[0], v.normal[1], v.normal[2]).cwiseAbs();
         const int axis = n.x() >= n.y() && n.x() >= n.z() ? 0 : (n.y() >= n.z() ? 1 : 2);
         const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;
@@ -246,7 +259,8 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
                 for (Vertex& v : part.vertices) crack_uv.set(v, piece.mass.center);
             // piece_colour repeats every 36 pieces (12 hues x 3 shades): one material per repeat.
             const unsigned material =
-                by_material ? parts.model_material(model, m, kind, look, vertex_colours)
+                kind == FaceKind::Fracture && parts.interior >= 0 ? parts.interior_material(look)
+                : by_material ? parts.model_material(model, m, kind, look, vertex_colours)
                             : parts.material(look.colours == Colours::Palette ? fmt::format("palette_{}_{}", id % 36, kind_name(kind))
                                                                               : fmt::format("material_{}", kind_name(kind)),
                                              face_colour(piece_base_colour(id, look), kind, look));
@@ -258,6 +272,33 @@ void add_piece(SceneParts& parts, const Model& model, uint32_t id, const RenderS
                                              vertex_colours && kind == FaceKind::Outer));
         }
     parts.node(name, mesh_ids);
+}
+
+aiTexture* embedded(const std::string& bytes, const std::string& hint, const std::string& name) {
+    auto* tex = new aiTexture();
+    tex->mWidth = unsigned(bytes.size());
+    tex->mHeight = 0;
+    tex->pcData = new aiTexel[(bytes.size() + sizeof(aiTexel) - 1) / sizeof(aiTexel)];
+    std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(tex->pcData));
+    std::copy(hint.begin(), hint.end(), tex->achFormatHint);
+    tex->mFilename = aiString(name);
+    return tex;
+}
+
+// [render] interior_texture as an embedded image, PNG or JPEG as it is, else decoded and stored as
+// PNG; Error(BadInput) naming the file when it does not decode.
+void add_interior_texture(SceneParts& parts, const std::string& path) {
+    InteriorTexture texture = read_interior_texture(path);
+    std::string& bytes = texture.bytes;
+    const DecodedImage& image = texture.image;
+    const bool png = bytes.rfind("\x89PNG", 0) == 0, jpeg = bytes.rfind("\xFF\xD8\xFF", 0) == 0;
+    std::string name = std::filesystem::path(path).filename().string();
+    if (!png && !jpeg) {
+        bytes = encode_png(image.rgba.data(), image.width, image.height, 4, size_t(image.width) * 4);
+        name = std::filesystem::path(path).stem().string() + ".png";
+    }
+    parts.interior = int(parts.textures.size());
+    parts.textures.push_back(embedded(bytes, jpeg ? "jpg" : "png", to_utf8(name)));
 }
 
 // The model's textures as embedded images: PNG and JPEG files as they are, any other format
@@ -277,16 +318,11 @@ void add_textures(SceneParts& parts, const Model& model) {
             const DecodedImage& image = images[size_t(decoded)];
             bytes = encode_png(image.rgba.data(), image.width, image.height, 4, size_t(image.width) * 4);
         }
-        auto* tex = new aiTexture();
-        tex->mWidth = unsigned(bytes.size());
-        tex->mHeight = 0;
-        tex->pcData = new aiTexel[(bytes.size() + sizeof(aiTexel) - 1) / sizeof(aiTexel)];
-        std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(tex->pcData));
-        std::copy(hint.begin(), hint.end(), tex->achFormatHint);
-        tex->mFilename = aiString(to_utf8(bytes == mat.texture ? mat.texture_name
-                                                               : std::filesystem::path(mat.texture_name).stem().string() + ".png"));
         parts.texture_of.push_back(int(parts.textures.size()));
-        parts.textures.push_back(tex);
+        parts.textures.push_back(embedded(bytes, hint,
+                                          to_utf8(bytes == mat.texture ? mat.texture_name
+                                                                       : std::filesystem::path(mat.texture_name).stem().string() +
+                                                                             ".png")));
     }
 }
 
@@ -385,7 +421,8 @@ std::unique_ptr<aiScene> build_scene(const Model& model, const Trajectory& t, co
     const std::vector<KinematicSettings> props = trajectory_props(t, where);
     SceneParts parts;
     add_textures(parts, model);
-    const CrackUv crack_uv(model);
+    if (!look.interior_texture.empty()) add_interior_texture(parts, look.interior_texture);
+    const CrackUv crack_uv(model, look);
     for (uint32_t i = 0; i < model.pieces.size(); ++i) add_piece(parts, model, i, look, crack_uv);
     for (uint32_t i = 0; i < props.size(); ++i) add_prop(parts, props[i], i, where);
     for (uint32_t b = 0; b < parts.nodes.size(); ++b) parts.nodes[b]->mTransformation = pose_matrix(t.pose(0, b));

@@ -117,7 +117,8 @@ constexpr Glyph kGlyphs[] = {
 constexpr std::array<uint8_t, 7> kMissing = {0b11111, 0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b11111};
 // clang-format on
 
-// The next code point of `s` from `i` (advanced); malformed bytes give U+FFFD one byte at a time.
+}  // namespace
+
 char32_t next_code_point(std::string_view s, size_t& i) {
     const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
     const unsigned char lead = byte(i);
@@ -137,8 +138,6 @@ char32_t next_code_point(std::string_view s, size_t& i) {
     i += size_t(extra) + 1;
     return code;
 }
-
-}  // namespace
 
 const uint8_t* glyph_rows(char32_t code_point) {
     for (const Glyph& g : kGlyphs)

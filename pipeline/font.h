@@ -3,6 +3,7 @@
 // pixels everywhere.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -17,6 +18,10 @@ struct Rgb {
 inline constexpr int kGlyphWidth = 5;    // (unit: font pixels)
 inline constexpr int kGlyphHeight = 7;   // (unit: font pixels)
 inline constexpr int kGlyphAdvance = 6;  // (unit: font pixels) glyph plus one column of space
+
+// The next code point of UTF-8 `s` from byte `i` (advanced past it); malformed bytes give U+FFFD,
+// one byte at a time.
+char32_t next_code_point(std::string_view s, size_t& i);
 
 // The 7 rows of a code point's glyph, top first, bit 4 = leftmost column. Characters the font
 // lacks get a hollow box.

@@ -1,7 +1,5 @@
-// Energy plots (PNG) drawn by matplotlib through Debian's /usr/bin/python3 (else python3 on PATH
-// that has matplotlib). The script is built in; the CSVs are read and checked here and the
-// numbers reach the script as JSON on its stdin, never through a command string. Fixed size
-// (800x450 pixels) and no version text in the file: the same data gives the same bytes.
+// Energy plots (PNG, 800x450 pixels), drawn in-process by pipeline/line_chart.h: no interpreter
+// to start beside render, and the same data gives the same bytes.
 #pragma once
 
 #include <string>
@@ -14,11 +12,12 @@ struct EnergyCurve {
     std::string csv_path;  // an energy CSV written by simulate (simulate/recording.h)
 };
 
-// One run (one curve given): kinetic, potential (relative to t = 0), stored and injected energy
-// against time. Several runs: one kinetic-energy curve per run, plus the injected energy dashed.
-// Written to a temporary name and renamed into place. Throws Error(BadInput) with file:line for a
-// missing or malformed CSV (before Python starts), Error(Tool) naming the fix when python3 or
-// matplotlib is missing or the script fails, Error(Io) when the PNG cannot be written.
+// One run (one curve given): every term of its energy books against time (kinetic, potential
+// relative to t = 0, stored, elastic, injected, what the joints and the contacts took, what driven
+// pieces gave) and their sum. Several runs: one kinetic-energy curve per run, its injected energy
+// dashed. Written to a temporary name and renamed into place. Throws Error(BadInput) with
+// file:line for a missing or malformed CSV (nothing written), Error(Io) when the PNG cannot be
+// written.
 void plot_energy(const std::vector<EnergyCurve>& curves, const std::string& title, const std::string& png_path);
 
 }  // namespace shatter

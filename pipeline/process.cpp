@@ -329,10 +329,10 @@ std::optional<ProcessResult> ChildProcess::poll() {
     return state_->result;
 }
 
-bool ChildProcess::write_stdin(const std::string& data) {
+bool ChildProcess::write_stdin(std::string_view data) {
     if (!state_->stdin_stream) throw Error(ExitCode::Internal, "ChildProcess::write_stdin without stdin_stream");
     if (state_->stdin_fd < 0) return false;
-    state_->stdin_data = data;
+    state_->stdin_data.assign(data.data(), data.size());
     state_->stdin_written = 0;
     while (state_->stdin_fd >= 0 && state_->stdin_written < state_->stdin_data.size()) state_->pump(-1);
     state_->stdin_data.clear();

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -61,7 +62,7 @@ public:
     int pid() const { return pid_; }
     // With ProcessOptions::stdin_stream: writes `data` to the child's stdin, reading its output
     // meanwhile (no deadlock); false when the child has closed its stdin (it gets no more).
-    bool write_stdin(const std::string& data);
+    bool write_stdin(std::string_view data);
     // The end of the stream: the child reads end of file (wait() closes it too).
     void close_stdin();
     // Non-blocking: the result once it has ended (captured output is read when it ends).

@@ -157,8 +157,10 @@ public:
     Runner& operator=(const Runner&) = delete;
 
     RunResult run() {
-        // A missing mesh is bad input found before the output folder is touched.
+        // A missing mesh, or interior texture, is bad input found before the output folder is touched.
         if (!shot_.mesh.path.empty() && !shot_.generate) file_hash(shot_.mesh.path);
+        if (!shot_.render.interior_texture.empty() && asked(Stage::Render))
+            read_file(shot_.render.interior_texture, "[render] interior_texture");
         make_directories(dir_.string());
         if (options_.chunks == 1) remove_stale_temporaries();
         AttachedSink log(run_log_sink((dir_ / "run.log").string()));
@@ -278,7 +280,7 @@ private:
              .what = "the movie", .needs_frames = true,
              .compute_beside = [&] {
                  encode_mp4(frames_dir(), trajectory().frames(), trajectory().fps, file(".mp4"),
-                            [&](uint32_t f) { return frame_drawn(f); });
+                            [&](uint32_t f) { return frame_drawn(f); }, &pixels_);
              }},
             {.stage = Stage::Sheet, .kind = StageKind::Finishing, .inputs = [&] { return json{{"render", render_key()}}; },
              .files = {{"", name_ + ".contact.png"}},
@@ -294,7 +296,7 @@ private:
              .compute = [&] { plot_energy({{name_, file(".energy.csv")}}, name_, file(".energy.png")); },
              .what = "the energy plot"},
             {.stage = Stage::Export, .kind = StageKind::Finishing,
-             .inputs = [&] { return json{{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}}; },
+             .inputs = [&] { return render_inputs(); },  // render's colours and interior texture
              .files = {{"", name_ + ".glb"}},
              .compute = [&] { export_glb(model(), trajectory(), file(".glb"), &shot_.render); }, .what = "the glTF file"},
             // summary.json is written at the report's place, whether the report is asked or not.
@@ -495,7 +497,10 @@ private:
 
     // ---- render
     json render_inputs() {
-        return {{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}};
+        json in = {{"model", model_hash()}, {"trajectory", trajectory_hash()}, {"render", to_json(shot_.render)}};
+        // An interior texture by its bytes: an image changed under the same name draws again.
+        if (!shot_.render.interior_texture.empty()) in["interior_texture"] = file_hash(shot_.render.interior_texture);
+        return in;
     }
     const std::string& render_key() {
         if (render_key_.empty()) render_key_ = stage_key("render", render_inputs());
@@ -547,6 +552,7 @@ private:
         for (Stage s : {Stage::Encode, Stage::Sheet, Stage::Plot, Stage::Export}) {
             if (!asked(s) || ((s == Stage::Encode || s == Stage::Sheet) && options_.chunks != 1)) continue;
             const StageStep* step = &step_of(s);
+            encoding_beside_ = encoding_beside_ || s == Stage::Encode;
             beside_.push_back({s, std::async(std::launch::async, [this, step] { return finish_beside_render(*step); })});
         }
     }
@@ -614,6 +620,12 @@ private:
         RenderOptions ro;
         ro.progress = options_.progress;
         ro.skip_existing = true;
+        // Encode, beside render, takes the frames' pixels from memory (it reads the files of those
+        // that do not fit, and of frames drawn before).
+        if (encoding_beside_)
+            ro.on_pixels = [this](uint32_t f, uint32_t w, uint32_t h, const std::vector<uint8_t>& rgb) {
+                pixels_.put(f, w, h, rgb);
+            };
         ro.size_source = options_.shot + ": [render] width, height";
         const auto [first, end] = chunk_frames(trajectory().frames(), options_.chunk, options_.chunks);
         const FrameRange range{first, end};
@@ -691,6 +703,8 @@ private:
     std::vector<StageStep> steps_;
     std::vector<Beside> beside_;
     std::atomic<bool> render_over_{true};
+    FramePixels pixels_;           // frames' pixels from render to encode beside it
+    bool encoding_beside_ = false;  // (set before render starts)
 };
 
 }  // namespace

@@ -1,10 +1,10 @@
-// An output file that an external tool (ffmpeg, matplotlib) writes: the tool is given a
+// An output file that an external tool (ffmpeg) writes: the tool is given a
 // temporary name beside the target, and only a finished file is renamed into place (STYLE 8).
 //
 // The temporary file sits in a folder of its own, TARGET.tmp.PID/: a tool whose parent was killed
 // (SIGKILL: nothing to stop the child) may still be writing, and the next run removes the folder
 // (pipeline/run.cpp). A tool that opened its file before keeps writing to a removed file; one that
-// opens it after finds no folder (neither ffmpeg nor matplotlib makes one); either way no file is
+// opens it after finds no folder (ffmpeg makes none); either way no file is
 // left under the output's folder.
 #pragma once
 

@@ -7,12 +7,16 @@
 #include <cstring>
 #include <map>
 
+#include <fmt/format.h>
+
+#include "core/error.h"
 #include "render/edge_filter.h"
 #include "render/gl.h"
 #include "render/gl_context.h"
 #include "render/camera_path.h"
 #include "render/scene_bounds.h"
 #include "render/shaders.h"
+#include "render/texture.h"
 
 namespace shatter {
 
@@ -58,6 +62,7 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         looks_ = material_looks(*scene.model, &images);
         for (const DecodedImage& image : images) textures_.push_back(std::make_unique<GpuTexture>(image));
     }
+    if (!settings.interior_texture.empty()) load_interior_texture();
     for (uint32_t i = 0; i < t.pieces; ++i) add_piece(i);
     for (uint32_t k = 0; k < t.props; ++k) {
         const KinematicSettings& body = props[k];
@@ -73,9 +78,9 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     for (const Item& item : items_) {
         GlProgram& p = scene_programs_[size_t(variant(item))];
         if (p.id()) continue;
-        const std::string fragment =
-            shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0, item.fade, item.texture >= 0);
-        p = GlProgram(shaders::kSceneVertex, fragment.c_str(), "scene");
+        const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0,
+                                                             item.fade, item.texture >= 0 && !item.interior, item.interior);
+        p = GlProgram(shaders::scene_vertex(item.interior).c_str(), fragment.c_str(), "scene");
         // Lights, shadow frustum and fade are fixed for the whole render: set once (and the
         // camera, unless it moves).
         p.use();
@@ -85,13 +90,26 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
     check_gl("scene setup");
 }
 
+void FrameRenderer::load_interior_texture() {
+    const std::string& path = settings_.interior_texture;
+    const DecodedImage image = read_interior_texture(path).image;
+    if (std::max(image.width, image.height) > kMaxTextureSide)
+        throw_input_error(path, fmt::format("[render] interior_texture is {} x {} texels, over {} a side", image.width,
+                                            image.height, kMaxTextureSide),
+                          "give a smaller image (repeats cost nothing: interior_texture_size sets their span)");
+    interior_texture_ = int(textures_.size());
+    textures_.push_back(std::make_unique<GpuTexture>(image));
+    interior_repeat_ = float(1 / interior_texture_span(*scene_.model, settings_));
+}
+
 void FrameRenderer::add_piece(uint32_t i) {
     // A render surface is drawn indexed with its smooth normals, and casts its shadow with the
     // piece's tet surface (a few thousand triangles instead of tens of thousands; the shadow
     // map holds the caster's back faces, which lie behind the drawn surface's lit side but in
     // pieces thinner than the two surfaces' gap; no acne seen in the demo); a tet surface as before.
+    // With an interior texture, its fracture faces are an item of their own.
     const Piece& piece = scene_.model->pieces[i];
-    if (!piece.render) {
+    if (!piece.render && interior_texture_ < 0) {
         Item item;
         item.mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings_));
         item.body = int(i);
@@ -99,7 +117,20 @@ void FrameRenderer::add_piece(uint32_t i) {
         items_.push_back(std::move(item));
         return;
     }
-    const IndexedVertices all = piece_mesh(piece, i, settings_, looks_);
+    IndexedVertices all = piece_mesh(piece, i, settings_, looks_);
+    if (interior_texture_ >= 0) {
+        // Fracture faces sample the interior texture, in interior_colour or white (their vertices
+        // are their own: a vertex has a copy per face kind).
+        const std::vector<FaceKind>& kinds = piece_mesh_kinds(piece);
+        const Colour tint = settings_.interior_colour.value_or(Colour{1, 1, 1});
+        if (all.texture.empty()) all.texture.assign(all.indices.size() / 3, -1);
+        for (size_t t = 0; t < all.texture.size() && t < kinds.size(); ++t) {
+            if (kinds[t] != FaceKind::Fracture) continue;
+            all.texture[t] = interior_texture_;
+            for (size_t k = 0; k < 3; ++k)
+                for (size_t c = 0; c < 3; ++c) all.vertices[all.indices[3 * t + k]].colour[c] = tint[c];
+        }
+    }
     // The triangles of each texture (-1 first: untextured), vertices renumbered in first use.
     std::map<int32_t, IndexedVertices> parts;
     if (all.texture.empty()) {
@@ -124,6 +155,8 @@ void FrameRenderer::add_piece(uint32_t i) {
         if (first && settings_.shadows) item.shadow_mesh = std::make_unique<GpuMesh>(piece_vertices(piece, i, settings_));
         item.casts = first;  // the piece's whole tet surface, once
         item.texture = texture;
+        item.interior = texture >= 0 && texture == interior_texture_;
+        item.rest_offset = piece.mass.center;
         item.body = int(i);
         item.specular = kPieceSpecular;
         items_.push_back(std::move(item));
@@ -246,6 +279,7 @@ void FrameRenderer::set_scene_uniforms(const GlProgram& p) const {
     p.set("u_bounce_colour", lights_.bounce_colour);
     p.set("u_shadow_map", 0);
     p.set("u_texture", 1);
+    p.set("u_interior_repeat", interior_repeat_);
     p.set("u_shadow_texel_uv", 1.0f / float(settings_.shadow_map));
     const float radius = float(bounds_.sizes().norm() / 2);
     p.set("u_fade_centre", Eigen::Vector3f(bounds_.center().cast<float>()));
@@ -279,6 +313,7 @@ void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fadin
         if (item.closed) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
         p.set("u_model", model_matrix(item, frame));
         p.set("u_specular", item.specular);
+        if (item.interior) p.set("u_rest_offset", Eigen::Vector3f(item.rest_offset.cast<float>()));
         if (item.texture >= 0) {
             glActiveTexture(GL_TEXTURE1);
             glBindTexture(GL_TEXTURE_2D, textures_[size_t(item.texture)]->id());

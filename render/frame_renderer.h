@@ -74,7 +74,9 @@ private:
         bool casts = true;    // drawn into the shadow map
         bool receives = true; // looks the shadow map up (false where no shadow can fall)
         float specular = 0;
-        int texture = -1;     // the input texture it samples (textures_), -1: none
+        int texture = -1;     // the texture it samples (textures_), -1: none
+        bool interior = false;  // `texture` is the interior texture, projected (fracture faces)
+        Vec3 rest_offset = Vec3::Zero();  // interior: the piece's centre in the unbroken object
     };
     void add_static_items();
     Eigen::Matrix4f model_matrix(const Item& item, uint32_t frame) const;
@@ -84,9 +86,13 @@ private:
     // Where this frame's edges are: the screen rectangle of every item that does not fade.
     PixelRect edge_rect(uint32_t frame) const;
     static int variant(const Item& item) {
-        return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4) | (item.texture >= 0 ? 8 : 0);
+        return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4) |
+               (item.texture >= 0 && !item.interior ? 8 : 0) | (item.interior ? 16 : 0);
     }
     void add_ground(const Vec3& origin, double extent);
+    // [render] interior_texture decoded into textures_ (Error(BadInput) naming the file when it
+    // cannot be), and its repeat.
+    void load_interior_texture();
     // Piece `i`'s items: one per texture its triangles sample (untextured first).
     void add_piece(uint32_t i);
     void set_scene_uniforms(const GlProgram& p) const;
@@ -102,8 +108,10 @@ private:
     RenderTarget target_;
     std::unique_ptr<ShadowMap> shadow_map_;
     std::vector<MaterialLook> looks_;                   // the model's materials (colours = "input"), else empty
-    std::vector<std::unique_ptr<GpuTexture>> textures_;  // their decoded textures
-    std::array<GlProgram, 16> scene_programs_;  // by variant(): highlight, fade, no shadow lookups, texture (built for the items present)
+    std::vector<std::unique_ptr<GpuTexture>> textures_;  // their decoded textures, then the interior texture
+    int interior_texture_ = -1;  // its place in textures_, -1: none
+    float interior_repeat_ = 0;  // its repeats per metre
+    std::array<GlProgram, 32> scene_programs_;  // by variant(): highlight, fade, no shadow lookups, texture, interior (built for the items present)
     GlProgram shadow_program_;
     FrameTimes times_;
 };

@@ -9,8 +9,8 @@
 
 namespace shatter {
 
-FrameWriter::FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth)
-    : width_(width), height_(height), overlap_(overlap), depth_(depth) {
+FrameWriter::FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth, FramePixelsSink sink)
+    : width_(width), height_(height), overlap_(overlap), depth_(depth), sink_(std::move(sink)) {
     if (overlap_) thread_ = std::thread([this] { run(); });
 }
 
@@ -36,7 +36,10 @@ void FrameWriter::write(const Job& job) {
     if (!job.rgba.empty()) {
         rgb_.resize(size_t(width_) * height_ * 3);
         rgba_rows_to_rgb(job.rgba.data(), width_, height_, rgb_.data());
+        if (sink_) sink_(job.frame, width_, height_, rgb_);
         last_png_ = encode_png(rgb_.data(), width_, height_, 3, size_t(width_) * 3);
+    } else if (sink_) {
+        sink_(job.frame, width_, height_, rgb_);  // a repeat: the last frame's pixels
     }
     const auto t1 = std::chrono::steady_clock::now();
     write_file_atomic(job.path, last_png_);
@@ -53,14 +56,14 @@ void FrameWriter::rethrow() {
     }
 }
 
-void FrameWriter::push(std::vector<uint8_t> rgba, std::string path) {
-    queue(Job{std::move(rgba), std::move(path)});
+void FrameWriter::push(std::vector<uint8_t> rgba, std::string path, uint32_t frame) {
+    queue(Job{std::move(rgba), std::move(path), frame});
     pushed_ = true;
 }
 
-void FrameWriter::repeat(std::string path) {
+void FrameWriter::repeat(std::string path, uint32_t frame) {
     if (!pushed_) throw Error(ExitCode::Internal, "FrameWriter::repeat before any frame");
-    queue(Job{{}, std::move(path)});
+    queue(Job{{}, std::move(path), frame});
 }
 
 void FrameWriter::queue(Job job) {

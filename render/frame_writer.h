@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -18,19 +19,24 @@
 
 namespace shatter {
 
+// Given a frame's number, size and sRGB RGB bytes (top row first).
+using FramePixelsSink =
+    std::function<void(uint32_t frame, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgb)>;
+
 class FrameWriter {
 public:
-    FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth = 2);
+    // `sink`, when set, gets each frame's pixels on the writer's thread before its file is written.
+    FrameWriter(uint32_t width, uint32_t height, bool overlap, size_t depth = 2, FramePixelsSink sink = {});
     ~FrameWriter();  // waits for the queue to drain (errors are dropped; call finish() to see them)
 
     // A buffer of width * height * 4 bytes to read a frame into (recycled).
     std::vector<uint8_t> buffer();
-    // Queues the sRGB RGBA bytes of a frame (GL's bottom row first) to be encoded to PNG and
+    // Queues the sRGB RGBA bytes of frame `frame` (GL's bottom row first) to be encoded to PNG and
     // written to `path`; rethrows an error of an earlier write.
-    void push(std::vector<uint8_t> rgba, std::string path);
-    // Queues the PNG of the frame pushed last written again to `path` (a frame whose pixels are
-    // that frame's: the same bytes, not encoded again). Needs an earlier push.
-    void repeat(std::string path);
+    void push(std::vector<uint8_t> rgba, std::string path, uint32_t frame = 0);
+    // Queues the PNG of the frame pushed last written again to `path` as frame `frame` (a frame
+    // whose pixels are that frame's: the same bytes, not encoded again). Needs an earlier push.
+    void repeat(std::string path, uint32_t frame = 0);
     // Waits until every queued frame is written; rethrows the first error.
     void finish();
 
@@ -41,6 +47,7 @@ private:
     struct Job {
         std::vector<uint8_t> rgba;  // empty: the last PNG again
         std::string path;
+        uint32_t frame = 0;
     };
     void queue(Job job);
     void run();
@@ -50,6 +57,7 @@ private:
     uint32_t width_, height_;
     bool overlap_;
     size_t depth_;
+    FramePixelsSink sink_;
     std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;

@@ -16,6 +16,7 @@
 #include "core/render_settings.h"
 #include "core/scene_settings.h"
 #include "core/trajectory.h"
+#include "render/frame_writer.h"
 
 namespace shatter {
 
@@ -68,6 +69,9 @@ struct RenderOptions {
     // atomically, and a frame's bytes do not depend on which run drew it).
     bool skip_existing = false;
     MsaaRegion msaa_region = MsaaRegion::Edges;
+    // Each frame's sRGB RGB bytes (top row first), drawn or repeated, before its file is written:
+    // on the writer's thread, frames in order (what `shatter run` hands ffmpeg without a PNG).
+    FramePixelsSink on_pixels;
 };
 
 // The file name of frame f: frame_00012.png (five digits, more when f >= 100000).

@@ -52,7 +52,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
     report.renderer = context.renderer();
     const auto start = std::chrono::steady_clock::now();
     FrameRenderer renderer(scene, settings, options.msaa_region);
-    FrameWriter writer(settings.width, settings.height, options.overlap);
+    FrameWriter writer(settings.width, settings.height, options.overlap, 2, options.on_pixels);
     std::optional<Progress> progress;
     if (options.progress) progress.emplace("render", range.end - range.first);
     bool drew_before = false;  // frame f - 1 went through the writer in this loop
@@ -67,7 +67,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
         // A frame that draws what the one before drew (pieces at rest, the camera still): that
         // frame's PNG again, the same bytes without drawing or encoding.
         if (drew_before && renderer.same_picture(f, f - 1)) {
-            writer.repeat(path);
+            writer.repeat(path, f);
             if (progress) progress->advance();
             ++report.frames;
             ++report.repeated;
@@ -79,7 +79,7 @@ RenderReport render_frames(const RenderScene& scene, const RenderSettings& setti
         report.draw_seconds += renderer.last_times().draw;
         report.readback_seconds += renderer.last_times().readback;
         report.filter_seconds += renderer.last_times().filter;
-        writer.push(std::move(rgba), path);
+        writer.push(std::move(rgba), path, f);
         if (progress) progress->advance();
         ++report.frames;
     }

@@ -11,6 +11,11 @@ uniform mat4 u_model;
 uniform mat4 u_view_projection;
 uniform mat4 u_shadow_view_projection;
 uniform float u_normal_offset;
+#if INTERIOR
+uniform vec3 u_rest_offset;  // the piece's centre in the unbroken object's frame
+out vec3 v_rest;
+out vec3 v_rest_normal;
+#endif
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_colour;
@@ -18,6 +23,10 @@ out vec3 v_shadow;
 out vec2 v_uv;
 void main() {
     v_uv = a_uv;
+#if INTERIOR
+    v_rest = a_position + u_rest_offset;
+    v_rest_normal = a_normal;
+#endif
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world = world.xyz;
     v_normal = mat3(u_model) * a_normal;
@@ -49,8 +58,22 @@ uniform float u_fade_start;
 uniform float u_fade_end;
 uniform vec3 u_background;
 uniform float u_specular;
-#if TEXTURE
+#if TEXTURE || INTERIOR
 uniform sampler2D u_texture;  // sRGB: sampled in linear light
+#endif
+#if INTERIOR
+in vec3 v_rest;
+in vec3 v_rest_normal;
+uniform float u_interior_repeat;  // repeats per metre
+
+// The interior texture projected along the three axes of the unbroken object, blended by the
+// normal's fourth powers: no seam where a crack turns, and the same on both sides of it.
+vec3 interior_albedo() {
+    vec3 w = pow(abs(normalize(v_rest_normal)), vec3(4.0));
+    w /= w.x + w.y + w.z;
+    vec3 p = v_rest * u_interior_repeat;
+    return w.x * texture(u_texture, p.zy).rgb + w.y * texture(u_texture, p.xz).rgb + w.z * texture(u_texture, p.xy).rgb;
+}
 #endif
 out vec4 o_colour;
 
@@ -82,6 +105,9 @@ void main() {
 #if TEXTURE  // the input's texture on outer faces
     albedo *= texture(u_texture, v_uv).rgb;
 #endif
+#if INTERIOR  // [render] interior_texture on fracture faces
+    albedo *= interior_albedo();
+#endif
     vec3 colour = albedo * (u_key_colour * key + u_fill_colour * fill + ambient);
 #if SPECULAR  // the ground has none: no pow()
     vec3 h = normalize(u_key_direction + normalize(u_camera - v_world));
@@ -95,11 +121,18 @@ void main() {
 }
 )";
 
-std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture) {
+std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture, bool interior) {
     std::string s = kSceneFragment;
     const size_t line = s.find('\n') + 1;  // after #version
     s.insert(line, std::string("#define SHADOWS ") + (shadows ? "1" : "0") + "\n#define SPECULAR " + (specular ? "1" : "0") +
-                       "\n#define FADE " + (fade ? "1" : "0") + "\n#define TEXTURE " + (texture ? "1" : "0") + "\n");
+                       "\n#define FADE " + (fade ? "1" : "0") + "\n#define TEXTURE " + (texture ? "1" : "0") +
+                       "\n#define INTERIOR " + (interior ? "1" : "0") + "\n");
+    return s;
+}
+
+std::string scene_vertex(bool interior) {
+    std::string s = kSceneVertex;
+    s.insert(s.find('\n') + 1, std::string("#define INTERIOR ") + (interior ? "1" : "0") + "\n");
     return s;
 }
 

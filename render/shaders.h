@@ -14,8 +14,12 @@ extern const char* const kSceneFragment;
 // The scene fragment shader specialized (#define) for one kind of item: llvmpipe runs both sides
 // of every branch under a mask, so a uniform `if` saves nothing; a variant without the shadow
 // lookups, the highlight or the fade does. `texture`: the colour is multiplied by u_texture
-// (unit 1) at the vertices' texture coordinates.
-std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture = false);
+// (unit 1) at the vertices' texture coordinates; `interior`: by u_texture projected from the
+// unbroken object's axes (fracture faces with [render] interior_texture).
+std::string scene_fragment(bool shadows, bool specular, bool fade, bool texture = false, bool interior = false);
+// The scene vertex shader; `interior`: it also passes the point and normal in the unbroken
+// object's frame (u_rest_offset: the piece's centre there).
+std::string scene_vertex(bool interior);
 extern const char* const kShadowVertex;
 extern const char* const kShadowFragment;
 

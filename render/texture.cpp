@@ -5,9 +5,30 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "core/atomic_file.h"
+#include "core/error.h"
 #include "render/gl.h"
 
 namespace shatter {
+
+InteriorTexture read_interior_texture(const std::string& path) {
+    InteriorTexture t;
+    t.bytes = read_file(path, "[render] interior_texture");
+    std::string why;
+    std::optional<DecodedImage> image = decode_image(t.bytes, &why);
+    if (!image)
+        throw_input_error(path, "[render] interior_texture cannot be decoded: " + why,
+                          "give a PNG, JPEG, TGA, BMP or WebP image");
+    t.image = std::move(*image);
+    return t;
+}
+
+double interior_texture_span(const Model& model, const RenderSettings& settings) {
+    if (settings.interior_texture_size > 0) return settings.interior_texture_size;
+    Eigen::AlignedBox3d box;
+    for (const Vec3& v : model.mesh.vertices) box.extend(v);
+    return box.isEmpty() ? 1.0 : std::max(box.diagonal().norm() / 4, 1e-6);
+}
 
 std::vector<MaterialLook> material_looks(const Model& model, std::vector<DecodedImage>* images) {
     std::vector<MaterialLook> looks;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/model.h"
+#include "core/render_settings.h"
 #include "meshio/image_decode.h"
 #include "render/mesh_builder.h"
 
@@ -24,6 +25,19 @@ inline constexpr uint32_t kMaxTextureSide = 8192;
 // kMaxTextureSide, is logged as a warning (once per material) and its material drawn in its
 // base colour; never an error.
 std::vector<MaterialLook> material_looks(const Model& model, std::vector<DecodedImage>* images);
+
+// [render] interior_texture as the file's bytes and its image; Error(BadInput) naming the file
+// when it cannot be read or decoded (render and the .glb read it alike).
+struct InteriorTexture {
+    std::string bytes;
+    DecodedImage image;
+};
+InteriorTexture read_interior_texture(const std::string& path);
+
+// One repeat of the interior texture (unit: m): interior_texture_size when given, else a quarter
+// of the diagonal of `model`'s tets' bounding box (render's projection and the .glb's crack
+// coordinates use the same).
+double interior_texture_span(const Model& model, const RenderSettings& settings);
 
 // A decoded image as a GL texture (needs a current context).
 class GpuTexture {

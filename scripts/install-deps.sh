@@ -18,7 +18,8 @@ PACKAGES=(
   libbullet-dev libeigen3-dev
   # render
   libosmesa6-dev libpng-dev zlib1g-dev
-  # textures: PNG, JPEG and TGA decoding (stb_image), WebP (glTF's EXT_texture_webp)
+  # textures: PNG, JPEG and TGA decoding (stb_image), WebP (glTF's EXT_texture_webp); the charts'
+  # text (stb_truetype)
   libstb-dev libwebp-dev
   # meshes in an archive: ZIP, 7z, RAR, tar (libarchive)
   libarchive-dev
@@ -29,9 +30,10 @@ PACKAGES=(
   # the demo mesh (/usr/share/glmark2/models/bunny.obj) and the mesh corpus (scripts/corpus.py):
   # CGAL's data set (data.tar.gz in libcgal-demo) and assimp's test models of every format
   glmark2-data libcgal-demo assimp-testmodels
-  # pipeline: MP4 encoding, energy plots and charts (Debian's /usr/bin/python3), Slurm fan-out
-  # (tested against a single-node cluster on loopback)
-  ffmpeg python3-matplotlib python3-numpy slurm-wlm munge
+  # pipeline: MP4 encoding, the energy plots' font (DejaVu Sans, drawn by stb_truetype), the
+  # study's charts (Debian's /usr/bin/python3), Slurm fan-out (tested against a single-node
+  # cluster on loopback)
+  ffmpeg fonts-dejavu-core python3-matplotlib python3-numpy slurm-wlm munge
   # the report pages' tests: headless Chromium opens them (tests/pipeline/report_page_test.cpp)
   chromium
   # the Blender add-on's test: Debian's Blender, headless (tests/blender/); xvfb gives Blender a

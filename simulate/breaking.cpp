@@ -10,7 +10,7 @@ std::vector<Overload> find_overloads(BulletWorld& world, BreakCriterion criterio
     if (world.flying()) return over;  // no joint is solved, none loaded
     for (size_t c = 0; c < world.constraint_count(); ++c) {
         if (!world.active(c)) continue;
-        const double f = world.force_on_a(c).norm();
+        const double f = world.load_on_a(c).norm();
         const double ratio = world.strength(c) > 0 ? f / world.strength(c) : INFINITY;
         if (criterion == BreakCriterion::BulletImpulse) {
             if (!world.bullet_disabled(c)) continue;

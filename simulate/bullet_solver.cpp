@@ -817,6 +817,7 @@ void PieceSolver::solveGroupCacheFriendlySplitImpulseIterations(btCollisionObjec
     for (int j = 0; j < m_tmpSolverContactConstraintPool.size() && !pushing; ++j)
         pushing = m_tmpSolverContactConstraintPool[j].m_rhsPenetration != 0;
     if (!pushing) return;
+    pushed_ = true;
     for (int r = 0; r < joints; ++r) m_tmpSolverNonContactConstraintPool[r].m_appliedPushImpulse = 0;
     const bool direct = direct_ && direct_system_->ok;
     if (direct) direct_system_->push_impulse.setZero();
@@ -895,7 +896,25 @@ void PieceSolver::write_back_joints(const btContactSolverInfo& info) {
         }
         constraint->internalSetAppliedImpulse(impulse);
         if (btFabs(impulse) >= constraint->getBreakingImpulseThreshold()) constraint->setEnabled(false);
+        if (!pushed_) continue;
+        // The push's load: the spring's force k h J push for the stretch h J push that the push
+        // velocities give the row (the turn by its ERP, as the step moves the bodies). Not the
+        // push rows' impulse, which holds the damper's c J push as well: a push has no speed.
+        const btSolverBody& a = m_tmpSolverBodyPool[row.m_solverBodyIdA];
+        const btSolverBody& b = m_tmpSolverBodyPool[row.m_solverBodyIdB];
+        const btScalar jv = row.m_contactNormal1.dot(a.m_pushVelocity) +
+                            row.m_relpos1CrossNormal.dot(a.m_turnVelocity) * info.m_splitImpulseTurnErp +
+                            row.m_contactNormal2.dot(b.m_pushVelocity) +
+                            row.m_relpos2CrossNormal.dot(b.m_turnVelocity) * info.m_splitImpulseTurnErp;
+        auto* joint = static_cast<CompliantPointConstraint*>(constraint);
+        const btScalar force = -btScalar(joint->stiffness()) * info.m_timeStep * jv;
+        btJointFeedback& fb = joint->push_feedback();
+        fb.m_appliedForceBodyA += row.m_contactNormal1 * force;
+        fb.m_appliedTorqueBodyA += row.m_relpos1CrossNormal * force;
+        fb.m_appliedForceBodyB += row.m_contactNormal2 * force;
+        fb.m_appliedTorqueBodyB += row.m_relpos2CrossNormal * force;
     }
+    pushed_ = false;
 }
 
 }  // namespace shatter

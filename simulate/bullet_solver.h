@@ -142,6 +142,7 @@ private:
     std::unique_ptr<Direct> direct_system_;
     bool direct_ = false;
     bool push_joints_ = false;
+    bool pushed_ = false;  // this solve's push pass moved bodies with the joint rows solved
     void write_back_joints(const btContactSolverInfo& info);
 
     double tolerance_ = 0;

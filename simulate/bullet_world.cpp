@@ -641,12 +641,12 @@ std::array<BodyAtPivot, 2> BulletWorld::bodies_at_pivot(size_t c, Vec3* pivot) c
     const btRigidBody& a = k.getRigidBodyA();
     const btRigidBody& b = k.getRigidBodyB();
     *pivot = 0.5 * (to_eigen(a.getWorldTransform() * k.getPivotInA()) + to_eigen(b.getWorldTransform() * k.getPivotInB()));
-    const btJointFeedback& fb = k.feedback();
+    const btJointFeedback load = k.load();
     std::array<BodyAtPivot, 2> out;
     const btRigidBody* body[2] = {&a, &b};
     const uint32_t piece[2] = {j.piece_a, j.piece_b};
-    const btVector3 force[2] = {fb.m_appliedForceBodyA, fb.m_appliedForceBodyB};
-    const btVector3 torque[2] = {fb.m_appliedTorqueBodyA, fb.m_appliedTorqueBodyB};
+    const btVector3 force[2] = {load.m_appliedForceBodyA, load.m_appliedForceBodyB};
+    const btVector3 torque[2] = {load.m_appliedTorqueBodyA, load.m_appliedTorqueBodyB};
     for (int s = 0; s < 2; ++s) {
         BodyAtPivot& p = out[s];
         p.dynamic = impl_->pieces[piece[s]].dynamic;

@@ -161,7 +161,8 @@ public:
     bool active(size_t c) const;
     double stiffness(size_t c) const;   // (unit: N/m)
     double strength(size_t c) const;    // break force (unit: N)
-    Vec3 force_on_a(size_t c) const;    // from the last step's joint feedback (unit: N)
+    Vec3 force_on_a(size_t c) const;    // the last step's solve's (unit: N)
+    Vec3 load_on_a(size_t c) const;     // and with its push's load, what its stretch holds (unit: N)
     double max_cfm(size_t c) const;     // largest row CFM of the last step
     double current_max_cfm(size_t c, double* min_row_inverse_mass) const;  // the same from the bodies as they are now
     uint32_t piece_a(size_t c) const;

@@ -63,7 +63,7 @@ void BulletWorld::Impl::account_step(double h_step) {
         if (j.strength > 0) {
             const Vec3 rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
                                        a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
-            const double r = spring_residual(j, stretch, rate, to_eigen(force));
+            const double r = spring_residual(j, stretch, rate, to_eigen(k.load().m_appliedForceBodyA));
             if (r > residual_max) residual_max = r, residual_worst = int64_t(c);
         }
         // The joint gave the pieces `pieces`, the drivers `drivers`, and stored e - elastic[c]:
@@ -195,8 +195,7 @@ double BulletWorld::Impl::joint_elastic(const Joint& j) {
 }
 
 double BulletWorld::Impl::stored_energy_of(const Joint& j) {
-    const Vec3 f = to_eigen(j.constraint->feedback().m_appliedForceBodyA);
-    return shatter::stored_energy(f, j.constraint->stiffness());
+    return shatter::stored_energy(to_eigen(j.constraint->load().m_appliedForceBodyA), j.constraint->stiffness());
 }
 
 double BulletWorld::stored_energy() const {

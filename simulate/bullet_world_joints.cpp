@@ -101,6 +101,11 @@ Vec3 BulletWorld::force_on_a(size_t c) const {
     return j.constraint ? to_eigen(j.constraint->feedback().m_appliedForceBodyA) : Vec3::Zero();
 }
 
+Vec3 BulletWorld::load_on_a(size_t c) const {
+    const auto& j = impl_->joints[c];
+    return j.constraint ? to_eigen(j.constraint->load().m_appliedForceBodyA) : Vec3::Zero();
+}
+
 bool BulletWorld::bullet_disabled(size_t c) const {
     const auto& j = impl_->joints[c];
     return j.active && j.constraint && !j.constraint->isEnabled();
@@ -142,7 +147,7 @@ BulletWorld::JointStretch BulletWorld::joint_stretch(size_t c) const {
     out.stretch = to_eigen(pb - pa);
     out.rate = to_eigen(b.getVelocityInLocalPoint(pb - b.getCenterOfMassPosition()) -
                         a.getVelocityInLocalPoint(pa - a.getCenterOfMassPosition()));
-    out.force_on_a = to_eigen(k.feedback().m_appliedForceBodyA);
+    out.force_on_a = to_eigen(k.load().m_appliedForceBodyA);
     return out;
 }
 

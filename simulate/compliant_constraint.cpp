@@ -6,6 +6,14 @@
 #include "simulate/spring.h"
 
 namespace shatter {
+namespace {
+
+void clear(btJointFeedback& f) {
+    for (btVector3* v : {&f.m_appliedForceBodyA, &f.m_appliedTorqueBodyA, &f.m_appliedForceBodyB, &f.m_appliedTorqueBodyB})
+        v->setZero();
+}
+
+}  // namespace
 
 CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& b, const btVector3& pivot_in_a,
                                                    const btVector3& pivot_in_b, double stiffness, double damping,
@@ -13,6 +21,7 @@ CompliantPointConstraint::CompliantPointConstraint(btRigidBody& a, btRigidBody& 
     : btPoint2PointConstraint(a, b, pivot_in_a, pivot_in_b), k_(stiffness), c_(damping), h_(h) {
     setParam(BT_CONSTRAINT_ERP, btScalar(spring_erp(k_, c_, h_)), -1);  // only axis -1 is honoured
     setJointFeedback(&feedback_);
+    clear(push_feedback_);
 }
 
 Vec3 CompliantPointConstraint::row_inverse_masses() const {
@@ -27,6 +36,15 @@ Vec3 CompliantPointConstraint::row_inverse_masses() const {
     return w;
 }
 
+btJointFeedback CompliantPointConstraint::load() const {
+    btJointFeedback sum;
+    sum.m_appliedForceBodyA = feedback_.m_appliedForceBodyA + push_feedback_.m_appliedForceBodyA;
+    sum.m_appliedTorqueBodyA = feedback_.m_appliedTorqueBodyA + push_feedback_.m_appliedTorqueBodyA;
+    sum.m_appliedForceBodyB = feedback_.m_appliedForceBodyB + push_feedback_.m_appliedForceBodyB;
+    sum.m_appliedTorqueBodyB = feedback_.m_appliedTorqueBodyB + push_feedback_.m_appliedTorqueBodyB;
+    return sum;
+}
+
 double CompliantPointConstraint::row_cfm(double w) const { return spring_cfm(k_, c_, h_, w); }
 
 void CompliantPointConstraint::set_step(double h) {
@@ -36,6 +54,7 @@ void CompliantPointConstraint::set_step(double h) {
 
 void CompliantPointConstraint::getInfo2(btConstraintInfo2* info) {
     btPoint2PointConstraint::getInfo2(info);
+    clear(push_feedback_);  // solved again: the solver's write-back sets it when the step pushes
     // A driven (kinematic) body is already where its script has it at the step's end when the
     // joints are solved, and its motion within the step comes in again through its velocity: the
     // error is counted from where its pivot was at the step's start, so that the drive moves the

@@ -37,12 +37,22 @@ public:
     // The largest row CFM of the last step (1 / (w h (h k + c)) over the three rows).
     double last_max_cfm() const { return last_max_cfm_; }
     const btJointFeedback& feedback() const { return feedback_; }
+    // The load of the split-impulse push on the joint (PieceSolver::push_joints): the force its
+    // stretch by the step's push adds to the spring, as feedback() has the solve's. The step's
+    // solve made the pieces' velocities from feedback() alone (the books' work), but the joint's
+    // stretch at the step's end is both, and so is what it holds and stores.
+    btJointFeedback& push_feedback() { return push_feedback_; }
+    const btJointFeedback& push_feedback() const { return push_feedback_; }
+    // What its stretch holds at the step's end: feedback() and push_feedback() together, the load
+    // that breaks it and that it stores.
+    btJointFeedback load() const;
 
 private:
     double k_, c_, h_;
     double strength_ = 0;
     double last_max_cfm_ = 0;
     btJointFeedback feedback_;
+    btJointFeedback push_feedback_;
 };
 
 }  // namespace shatter

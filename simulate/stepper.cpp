@@ -248,7 +248,7 @@ void Stepper::add_overlapped(std::vector<Overload>& over) {
             overlap_[c] = excess;
             overlapped_.push_back(c);
             const double s = world_.strength(c);
-            over.push_back({c, s > 0 ? world_.force_on_a(c).norm() / s : INFINITY});
+            over.push_back({c, s > 0 ? world_.load_on_a(c).norm() / s : INFINITY});
         }
     }
     partly_joined_.resize(kept);

@@ -29,7 +29,7 @@ DEFAULT_DROP_M = 1.5          # m: the default shot's drop (docs/shot.md)
 POLL_SECONDS = 0.25
 EXIT_OK = 0
 EXIT_UNSTABLE = 5             # the simulation stopped early: the valid frames are kept (docs/pipeline.md)
-EXIT_TOOL = 6                 # ffmpeg or matplotlib missing or failing: the rest is there
+EXIT_TOOL = 6                 # ffmpeg missing or failing: the rest is there
 
 
 # The run folders of the runs going on in this Blender: a run's folder is its own (a second run

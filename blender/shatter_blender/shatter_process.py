@@ -2,7 +2,7 @@
 
 Nothing here imports bpy, so that the operator's modal timer and the synchronous path of
 background mode share one implementation. The child runs in a session of its own, so that a
-cancel stops it and everything it started (ffmpeg, matplotlib) at once; its stdout and stderr
+cancel stops it and everything it started (ffmpeg) at once; its stdout and stderr
 are read by two threads into lists of lines, so that a chatty child never blocks on a full pipe.
 
 shatter logs "LEVEL: text" lines on stderr (core/log.cpp): "info: [3/9] render" when a stage

@@ -367,6 +367,13 @@ TEST(RunCommand, MissingMeshMalformedShotAndUnknownKeysAreClearErrors) {
     EXPECT_NE(r.err.find("unknown.toml:4"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("did you mean 'alpha'"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir.file("c")));
+    // An interior texture that is not there: refused before the output folder is made (the path
+    // is the shot folder's), not after prescore and simulate.
+    const std::string texture = dir.write("texture.toml", "[mesh]\npath = \"cube.obj\"\n[render]\ninterior_texture = \"stone.png\"\n");
+    r = run_shatter({"run", texture, "-o", dir.file("d")});
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.err.find(dir.file("stone.png")), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.file("d")));
 }
 
 // Without ffmpeg the movie cannot be made: exit code 6 with the fix, and every other output is
@@ -396,7 +403,7 @@ TEST(RunCommand, WithoutFfmpegTheOtherOutputsAreStillMade) {
 
 // File names are bytes, never commands: a shot, mesh and output folder named with spaces, quotes,
 // $(...), backticks, semicolons, a newline and non-ASCII letters go through every stage,
-// ffmpeg and matplotlib included, and nothing they spell is run.
+// ffmpeg included, and nothing they spell is run.
 TEST(RunCommand, HostileNamesWorkEverywhereAndRunNothing) {
     TempDir dir;
     const std::string hostile = "it's \"$(touch pwned)\" `touch pwned`; touch pwned\nZ\u00fcrich \u00e9t\u00e9 %d";

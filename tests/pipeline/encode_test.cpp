@@ -166,7 +166,7 @@ TEST(Encode, MissingFramesAreBadInputAndLeaveNoTemporary) {
     EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
 }
 
-TEST(Encode, FramesFfmpegCannotDecodeAreAToolErrorWithItsOutput) {
+TEST(Encode, FramesThatAreNoPngOrOfAnotherSizeAreBadInputNamingTheFrame) {
     TempDir tmp;
     fs::create_directories(tmp.path() / "frames");
     for (int i = 0; i < 3; ++i) tmp.write(fmt::format("frames/frame_{:05d}.png", i), "not a png\n");
@@ -174,12 +174,62 @@ TEST(Encode, FramesFfmpegCannotDecodeAreAToolErrorWithItsOutput) {
         encode_mp4((tmp.path() / "frames").string(), 3, 30.0, tmp.file("out.mp4"));
         FAIL() << "no error";
     } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("frame_00000.png"), std::string::npos) << e.what();
+    }
+    write_frames(tmp.path() / "sizes", 3, 32, 32);
+    save_png((tmp.path() / "sizes" / "frame_00002.png").string(), Image(32, 16));
+    try {
+        encode_mp4((tmp.path() / "sizes").string(), 3, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("frame 2 is 32 x 16 pixels, frame 0 32 x 32"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"frames", "sizes"}));
+}
+
+// An ffmpeg that fails (here a script in its place): a tool error with its last lines and the
+// command that encodes the same frames, nothing left behind.
+TEST(Encode, AFailingFfmpegIsAToolErrorWithItsOutput) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 2, 16, 16);
+    fs::create_directories(tmp.path() / "bin");
+    const std::string fake = tmp.write("bin/ffmpeg", "#!/bin/sh\ncat > /dev/null\necho 'no encoder here' >&2\nexit 3\n");
+    fs::permissions(fake, fs::perms::owner_all);
+    ScopedPath path((tmp.path() / "bin").string() + ":/usr/bin:/bin");
+    try {
+        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("out.mp4"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
         EXPECT_EQ(e.code(), ExitCode::Tool);
         const std::string what = e.what();
-        EXPECT_NE(what.find("ffmpeg failed (exit code"), std::string::npos) << what;
-        EXPECT_NE(what.find("(fix: "), std::string::npos);
+        EXPECT_NE(what.find("ffmpeg failed (exit code 3)"), std::string::npos) << what;
+        EXPECT_NE(what.find("no encoder here"), std::string::npos) << what;
+        EXPECT_NE(what.find("frame_%05d.png"), std::string::npos) << what;
     }
-    EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
+    EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"bin", "frames"}));
+}
+
+// As `shatter run` gives them: frames' pixels held in memory are taken instead of their files
+// (the same pixels give the same bytes; other pixels another movie), and frames not held are
+// read from their files.
+TEST(Encode, PixelsHeldInMemoryAreTakenInsteadOfTheFiles) {
+    TempDir tmp;
+    write_frames(tmp.path() / "frames", 6, 64, 48);
+    encode_mp4((tmp.path() / "frames").string(), 6, 30.0, tmp.file("files.mp4"));
+    FramePixels same;
+    for (uint32_t f : {0u, 2u, 3u}) {
+        const Image image = load_png((tmp.path() / "frames" / fmt::format("frame_{:05d}.png", f)).string());
+        same.put(f, image.width, image.height, image.rgb);
+    }
+    encode_mp4((tmp.path() / "frames").string(), 6, 30.0, tmp.file("memory.mp4"), {}, &same);
+    EXPECT_EQ(slurp(tmp.file("memory.mp4")), slurp(tmp.file("files.mp4")));
+    EXPECT_FALSE(same.take(3)) << "taken once";
+    FramePixels other;
+    other.put(2, 64, 48, std::vector<uint8_t>(64 * 48 * 3, 200));
+    encode_mp4((tmp.path() / "frames").string(), 6, 30.0, tmp.file("other.mp4"), {}, &other);
+    EXPECT_NE(slurp(tmp.file("other.mp4")), slurp(tmp.file("files.mp4")));
 }
 
 TEST(Encode, FfmpegMissingFromPathIsAToolErrorNamingTheFix) {

@@ -28,6 +28,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/model_io.h"
 #include "core/palette.h"
@@ -39,6 +40,7 @@
 #include "prescore/prescore.h"
 #include "render/camera_path.h"
 #include "render/mesh_builder.h"
+#include "render/png_io.h"
 #include "render/texture.h"
 #include "scenes/box_model.h"
 #include "support/duck.h"
@@ -755,19 +757,18 @@ TEST(GlbExport, AnInputsVertexColoursBecomeColor0) {
     ASSERT_EQ(validator_errors(*node, *modules, dir.file("cube.glb"), &out), 0) << out;
 }
 
-// Crack faces carry texture coordinates (an interior texture can use them): each vertex's point in
-// the unbroken object (vertex + its piece's centre of mass), over the tet mesh's bounding box in
-// units of its diagonal, projected along its normal's largest axis. Both sides of a crack are the
-// same points: they get the same coordinates.
-TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
-    TempDir dir;
-    const Model m = prescored_cube(dir, true);
-    export_glb(m, test_trajectory(m, kFrames, false), dir.file("c.glb"));
-    Imported g(dir.file("c.glb"));
-    ASSERT_TRUE(g.scene);
+// The crack faces' texture coordinates of `glb` (exported from `m`): each vertex's point in the
+// unbroken object (vertex + its piece's centre of mass), over the tet mesh's bounding box in
+// units of `unit` (m; 0: its diagonal), projected along its normal's largest axis; both sides of
+// a crack, the same points, get the same coordinates. Their material's name.
+std::string expect_crack_texcoords(const Model& m, const std::string& glb, double unit) {
+    Imported g(glb);
+    EXPECT_TRUE(g.scene);
+    if (!g.scene) return "";
     Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
     for (const Vec3& v : m.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-    const double diagonal = (hi - lo).norm();
+    const double diagonal = unit > 0 ? unit : (hi - lo).norm();
+    std::string material;
     // Per crack triangle (by its corners' points, 0.1 um): the piece it was first seen in and its
     // corners' coordinates by point.
     using Point = std::array<long long, 3>;
@@ -775,13 +776,16 @@ TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
     size_t checked = 0, shared = 0;
     for (uint32_t p = 0; p < m.pieces.size(); ++p) {
         const aiNode* n = g.node(fmt::format("piece_{}", p));
-        ASSERT_TRUE(n);
+        EXPECT_TRUE(n);
+        if (!n) return "";
         for (unsigned k = 0; k < n->mNumMeshes; ++k) {
             const aiMesh* part = g.scene->mMeshes[n->mMeshes[k]];
             aiString name;
             g.scene->mMaterials[part->mMaterialIndex]->Get(AI_MATKEY_NAME, name);
             if (std::string(name.C_Str()).find("fracture") == std::string::npos) continue;
-            ASSERT_TRUE(part->HasTextureCoords(0)) << name.C_Str();
+            material = name.C_Str();
+            EXPECT_TRUE(part->HasTextureCoords(0)) << name.C_Str();
+            if (!part->HasTextureCoords(0)) return "";
             std::vector<Point> point(part->mNumVertices);
             for (unsigned i = 0; i < part->mNumVertices; ++i) {
                 const Vec3 x = Vec3(part->mVertices[i].x, part->mVertices[i].y, part->mVertices[i].z) + m.pieces[p].mass.center;
@@ -813,6 +817,46 @@ TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
     }
     EXPECT_GT(checked, 50u);
     EXPECT_GT(shared, 10u);  // triangles seen from both sides
+    return material;
+}
+
+// Crack faces carry texture coordinates (an interior texture set in the user's tool can use
+// them), in units of the object's diagonal.
+TEST(GlbExport, CrackFacesHaveBoxProjectedTexcoordsThatAgreeAcrossEachCrack) {
+    TempDir dir;
+    const Model m = prescored_cube(dir, true);
+    export_glb(m, test_trajectory(m, kFrames, false), dir.file("c.glb"));
+    expect_crack_texcoords(m, dir.file("c.glb"), 0);
+}
+
+// With [render] interior_texture, the crack faces share one material whose base colour texture is
+// that image, embedded, and their coordinates count its repeats (interior_texture_size).
+TEST(GlbExport, AnInteriorTextureIsEmbeddedOnTheCrackFacesInItsRepeats) {
+    TempDir dir;
+    const Model m = prescored_cube(dir, true);
+    Image stone(8, 8);
+    for (size_t i = 0; i < stone.rgb.size(); ++i) stone.rgb[i] = uint8_t(37 * i);
+    save_png(dir.file("stone.png"), stone);
+    RenderSettings look;
+    look.interior_texture = dir.file("stone.png");
+    look.interior_texture_size = 0.02;
+    export_glb(m, test_trajectory(m, kFrames, false), dir.file("c.glb"), &look);
+    EXPECT_EQ(expect_crack_texcoords(m, dir.file("c.glb"), 0.02), "interior_fracture");
+    Imported g(dir.file("c.glb"));
+    ASSERT_TRUE(g.scene);
+    const aiMaterial* interior = nullptr;
+    for (unsigned i = 0; i < g.scene->mNumMaterials; ++i) {
+        aiString name;
+        g.scene->mMaterials[i]->Get(AI_MATKEY_NAME, name);
+        if (std::string(name.C_Str()) == "interior_fracture") interior = g.scene->mMaterials[i];
+    }
+    ASSERT_TRUE(interior);
+    aiString path;
+    ASSERT_EQ(interior->GetTexture(aiTextureType_BASE_COLOR, 0, &path), AI_SUCCESS);
+    const aiTexture* embedded = g.scene->GetEmbeddedTexture(path.C_Str());
+    ASSERT_TRUE(embedded);
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth),
+              read_file(dir.file("stone.png")));  // the PNG as it is
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Energy plots: a PNG of the fixed figure size from simulate's CSV, the same bytes twice, several
-// runs in one plot, and bad CSVs refused with the file and line before Python is started.
+// runs in one plot, and bad CSVs refused with the file and line, nothing written.
 #include <gtest/gtest.h>
 
 #include <cmath>

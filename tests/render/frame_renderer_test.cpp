@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/error.h"
 #include "core/model_io.h"
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"
@@ -98,6 +99,62 @@ TEST(FrameRenderer, RenderSurfacesAreDrawnIndexedAndCoverWhatTheTetSurfacesCover
         const DiffMetrics d = compare_images(render_one(with, s, f), render_one(without, s, f), 24);
         EXPECT_LT(d.fraction_over, 0.01) << "frame " << f << ": " << d.pixels_over << " pixels over 24 levels";
         ::testing::Test::RecordProperty("rmse_frame_" + std::to_string(f), std::to_string(d.rmse));
+    }
+}
+
+// [render] interior_texture lands on the fracture faces and nowhere else: the pixels it changes
+// are the pixels an interior colour changes, and a red image makes them red. Frames as the two
+// cube pieces fly apart and turn (checked where their fracture faces are in view); the edge
+// filter off, so that no pixel changes for a neighbour's sake.
+TEST(FrameRenderer, AnInteriorTextureLandsOnTheFractureFacesAlone) {
+    TestScene t;
+    TempDir tmp;
+    Image red(4, 4);
+    for (size_t i = 0; i < red.rgb.size(); i += 3) red.rgb[i] = 255;
+    save_png(tmp.file("red.png"), red);
+    RenderSettings s = small_render_settings();
+    s.edge_filter = false;
+    RenderSettings green = s, textured = s;
+    green.interior_colour = Colour{0, 1, 0};
+    textured.interior_texture = tmp.file("red.png");
+    size_t total = 0;
+    for (uint32_t f : {8u, 12u, 16u, 20u, 23u}) {
+        const Image base = render_one(t, s, f), g = render_one(t, green, f), r = render_one(t, textured, f);
+        size_t fracture = 0, only_one = 0;
+        double red_sum = 0, green_sum = 0;
+        for (size_t i = 0; i < base.rgb.size(); i += 3) {
+            const auto moved = [&](const Image& a) {
+                return std::abs(a.rgb[i] - base.rgb[i]) + std::abs(a.rgb[i + 1] - base.rgb[i + 1]) +
+                           std::abs(a.rgb[i + 2] - base.rgb[i + 2]) > 6;
+            };
+            const bool in_g = moved(g), in_r = moved(r);
+            fracture += in_g;
+            only_one += in_g != in_r;
+            if (in_r) red_sum += r.rgb[i], green_sum += r.rgb[i + 1];
+        }
+        total += fracture;
+        ::testing::Test::RecordProperty("fracture_pixels_" + std::to_string(f), std::to_string(fracture));
+        if (fracture < 50) continue;  // the faces turned away in this frame
+        EXPECT_LT(double(only_one), 0.05 * double(fracture)) << "frame " << f << ": " << only_one << " of " << fracture;
+        EXPECT_GT(red_sum, 3 * green_sum) << "frame " << f;  // lit red: the red channel alone
+    }
+    EXPECT_GT(total, 500u) << "the fracture faces should be in view";
+}
+
+TEST(FrameRenderer, AnInteriorTextureThatIsNoImageIsBadInputNamingTheFile) {
+    TestScene t;
+    TempDir tmp;
+    RenderSettings s = small_render_settings();
+    s.interior_texture = tmp.write("stone.png", "not an image");
+    GlContext context;
+    RenderScene scene = t.scene();
+    try {
+        FrameRenderer r(scene, s, MsaaRegion::Edges);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::BadInput);
+        EXPECT_NE(std::string(e.what()).find("stone.png"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("interior_texture"), std::string::npos) << e.what();
     }
 }
 

@@ -172,8 +172,9 @@ TEST(DirectJoints, AutoIsDirectAtAnyPieceCountAndIterativeJointsAreWarnedOfTheir
 // its spring's, k |d|^2 / 2 by its stretch. A plate of 10 x 10 boxes of 2 cm landing flat on a
 // sphere: iterative joints (20 iterations) leave the forces far short of the springs, and the run
 // warns that the joints that broke held more by their stretch than the books count. Direct joints
-// are not warned (at this impact their forces carry the joints' damping too, so the two differ
-// with them as well: the test prints both).
+// are not warned: their loads, the solve's force and the load of the contacts' push (which stretches
+// the joints of the boxes it moves out of the sphere), are what their springs hold, within 1%
+// (without the push's load 4% short here, and 40% on the bunny in 1,000 pieces).
 TEST(DirectJoints, IterativeJointsThatBreakHoldingMoreThanTheirForcesStoreAreWarned) {
     const Model plate = box_grid(10, 1, 10, 0.02, Vec3(-0.1, 0, -0.1), 2400, 2);
     SimulationInput in;
@@ -207,7 +208,8 @@ TEST(DirectJoints, IterativeJointsThatBreakHoldingMoreThanTheirForcesStoreAreWar
     ASSERT_TRUE(direct.complete) << direct.stop_reason;
     ASSERT_FALSE(direct.breaks.empty());
     EXPECT_FALSE(warned(direct));
-    std::printf("held by stretch over stored: iterative %.3g (%zu breaks), direct %.3g (%zu breaks)\n",
+    EXPECT_NEAR(held_over_stored(direct), 1, 0.01);
+    std::printf("held by stretch over stored: iterative %.3g (%zu breaks), direct %.4f (%zu breaks)\n",
                 held_over_stored(iterative), iterative.breaks.size(), held_over_stored(direct), direct.breaks.size());
 }
 

@@ -35,7 +35,9 @@ TEST(SurfacePair, AMaterialAgainstItselfKeepsItsOwnFigures) {
 }
 
 // Pushed at v0 = 1 m/s along the ground, the cube slides v0^2 / (2 mu g) before it stops. Cube
-// 0.2 on ground 0.8: mu = 0.4, 0.1274 m (Bullet's product, 0.16, would give 0.3186 m).
+// 0.2 on ground 0.8: mu = 0.4, 0.1274 m (Bullet's product, 0.16, would give 0.3186 m). Bullet
+// stops it 2% to 5% short at steps from 1/240 s to 1/3,840 s, not converging with the step
+// (docs/log.md): within 4% at this one.
 TEST(SurfacePair, ACubeSlidesAsFarAsThePairsFrictionLetsIt) {
     SimulationInput in = cube_at(1e-4);
     in.object.velocity = Vec3(1, 0, 0);
@@ -46,7 +48,7 @@ TEST(SurfacePair, ACubeSlidesAsFarAsThePairsFrictionLetsIt) {
     const Trajectory& t = r.trajectory;
     const double slid = double(t.pose(t.frames() - 1, 0).position.x() - t.pose(0, 0).position.x());
     const double predicted = 1.0 / (2 * 0.4 * kG);
-    EXPECT_NEAR(slid, predicted, 0.03 * predicted);
+    EXPECT_NEAR(slid, predicted, 0.04 * predicted);
     // At rest at the end (it stops after v0 / (mu g) = 0.255 s).
     const double speed = double(t.pose(t.frames() - 1, 0).position.x() - t.pose(t.frames() - 2, 0).position.x()) * t.fps;
     EXPECT_LT(std::abs(speed), 1e-3);
