@@ -75,9 +75,9 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         items_.push_back(std::move(item));
     }
     add_static_items();
-    for (const Item& item : items_) {
+    const auto build = [&](const Item& item) {
         GlProgram& p = scene_programs_[size_t(variant(item))];
-        if (p.id()) continue;
+        if (p.id()) return;
         const std::string fragment = shaders::scene_fragment(settings.shadows && item.receives, item.specular > 0,
                                                              item.fade, item.texture >= 0 && !item.interior, item.interior);
         p = GlProgram(shaders::scene_vertex(item.interior).c_str(), fragment.c_str(), "scene");
@@ -86,6 +86,13 @@ FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& set
         p.use();
         set_scene_uniforms(p);
         set_camera_uniforms(p, cameras_.front());
+    };
+    for (const Item& item : items_) {
+        build(item);
+        if (!item.shadow_clip) continue;
+        Item outside;  // its variant without lookups, for around the shadow rectangle
+        outside.fade = item.fade, outside.specular = item.specular, outside.receives = false;
+        build(outside);
     }
     check_gl("scene setup");
 }
@@ -204,6 +211,7 @@ void FrameRenderer::add_static_items() {
 // footprint: the four edges of the light's orthographic box met with the ground plane, padded
 // by 4 texels for the lookups' normal offset and filter taps.
 void FrameRenderer::add_ground(const Vec3& origin, double extent) {
+    ground_y_ = origin.y();
     double x0 = -extent, x1 = extent, z0 = -extent, z1 = extent;
     if (shadow_map_) {
         const Eigen::Matrix4f inverse = lights_.shadow_view_projection.inverse();
@@ -235,6 +243,7 @@ void FrameRenderer::add_ground(const Vec3& origin, double extent) {
         item.fade = true;
         item.casts = false;              // nothing lies below it
         item.receives = part == &inner;  // the ring is outside the shadow map
+        item.shadow_clip = part == &inner && shadow_map_;
         items_.push_back(std::move(item));
     }
 }
@@ -319,10 +328,81 @@ void FrameRenderer::scene_pass(uint32_t frame, const PixelRect& rect, bool fadin
             glBindTexture(GL_TEXTURE_2D, textures_[size_t(item.texture)]->id());
             glActiveTexture(GL_TEXTURE0);
         }
-        item.mesh->draw();
+        if (item.shadow_clip) {
+            draw_shadow_clipped(item, rect);
+            current = -1;
+        } else {
+            item.mesh->draw();
+        }
     }
     glBindTexture(GL_TEXTURE_2D, 0);
     glDisable(GL_SCISSOR_TEST);
+}
+
+// Outside the rectangle every lookup finds the map empty and key_visibility() returns exactly 1,
+// so the variant without lookups draws the same pixels there for less work (llvmpipe runs both
+// sides of a branch, so a test in the shader would save nothing). The two draws are the same
+// triangles under complementary scissors: each pixel is drawn once, as by one draw.
+void FrameRenderer::draw_shadow_clipped(const Item& item, const PixelRect& rect) {
+    const auto meet = [](const PixelRect& a, const PixelRect& b) {
+        return PixelRect{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+    };
+    const auto draw = [&](const PixelRect& r, int variant_of) {
+        if (r.empty()) return;
+        const GlProgram& p = scene_programs_[size_t(variant_of)];
+        p.use();
+        p.set("u_model", item.model);
+        p.set("u_specular", item.specular);
+        glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+        item.mesh->draw();
+    };
+    const PixelRect in = meet(rect, shadow_rect_);
+    draw(in, variant(item));
+    const PixelRect e = in.empty() ? PixelRect{rect.x0, rect.y1, rect.x0, rect.y1} : in;
+    for (const PixelRect& band : {PixelRect{rect.x0, rect.y0, rect.x1, e.y0}, PixelRect{rect.x0, e.y1, rect.x1, rect.y1},
+                                  PixelRect{rect.x0, e.y0, e.x0, e.y1}, PixelRect{e.x1, e.y0, rect.x1, e.y1}})
+        draw(band, variant(item) | 4);
+    glScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
+}
+
+PixelRect FrameRenderer::shadow_rect(uint32_t frame) const {
+    const int w = int(settings_.width), h = int(settings_.height);
+    const PixelRect screen{0, 0, w, h};
+    const Eigen::Vector3d light = lights_.key_direction.cast<double>();
+    if (!(light.y() > 1e-3)) return screen;  // a grazing light: its shadows reach anywhere
+    // The casters' boxes carried along the light onto the ground: a rectangle that holds every
+    // point of the ground whose ray to the light meets a caster.
+    double x0 = INFINITY, z0 = INFINITY, x1 = -INFINITY, z1 = -INFINITY;
+    for (const Item& item : items_) {
+        if (!item.casts) continue;
+        const Eigen::Matrix4d m = model_matrix(item, frame).cast<double>();
+        const Eigen::AlignedBox3f& b = (item.shadow_mesh ? item.shadow_mesh : item.mesh)->bounds();
+        for (int c = 0; c < 8; ++c) {
+            const Eigen::Vector3d p =
+                (m * b.corner(Eigen::AlignedBox3f::CornerType(c)).cast<double>().homogeneous()).head<3>();
+            const Eigen::Vector3d g = p - light * ((p.y() - ground_y_) / light.y());
+            x0 = std::min(x0, g.x()), x1 = std::max(x1, g.x()), z0 = std::min(z0, g.z()), z1 = std::max(z1, g.z());
+        }
+    }
+    if (!(x0 <= x1)) return {};  // nothing casts
+    // The filter's reach (1.75 texels) and the normal offset (1.5 texels), each at most 1 /
+    // light.y() times longer on the ground than in the map, with room to spare.
+    const double pad = 8 * lights_.shadow_texel / light.y();
+    x0 -= pad, z0 -= pad, x1 += pad, z1 += pad;
+    const Camera& c = camera(frame);
+    const Eigen::Matrix4d view_projection = (c.projection * c.view).cast<double>();
+    double sx0 = INFINITY, sy0 = INFINITY, sx1 = -INFINITY, sy1 = -INFINITY;
+    for (double x : {x0, x1})
+        for (double z : {z0, z1}) {
+            const Eigen::Vector4d q = view_projection * Eigen::Vector4d(x, ground_y_, z, 1);
+            if (!(q.w() > 1e-6)) return screen;  // behind the eye: no safe rectangle
+            const double px = (q.x() / q.w() * 0.5 + 0.5) * w, py = (q.y() / q.w() * 0.5 + 0.5) * h;
+            sx0 = std::min(sx0, px), sx1 = std::max(sx1, px), sy0 = std::min(sy0, py), sy1 = std::max(sy1, py);
+        }
+    constexpr double kMargin = 2;  // pixels
+    auto clamp = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
+    return {clamp(std::floor(sx0 - kMargin), w), clamp(std::floor(sy0 - kMargin), h), clamp(std::ceil(sx1 + kMargin), w),
+            clamp(std::ceil(sy1 + kMargin), h)};
 }
 
 PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
@@ -370,7 +450,7 @@ void FrameRenderer::render(uint32_t frame, uint8_t* rgba) {
     if (camera_moves())
         for (const GlProgram& p : scene_programs_)
             if (p.id()) p.use(), set_camera_uniforms(p, camera(frame));
-    if (shadow_map_) shadow_pass(frame);
+    if (shadow_map_) shadow_pass(frame), shadow_rect_ = shadow_rect(frame);
     const int w = int(settings_.width), h = int(settings_.height);
     const PixelRect screen{0, 0, w, h};
     PixelRect edges;

@@ -73,6 +73,7 @@ private:
         bool fade = false;    // fades into the background with distance (ground, planes)
         bool casts = true;    // drawn into the shadow map
         bool receives = true; // looks the shadow map up (false where no shadow can fall)
+        bool shadow_clip = false;  // looks it up only within the frame's shadow rectangle (the ground)
         float specular = 0;
         int texture = -1;     // the texture it samples (textures_), -1: none
         bool interior = false;  // `texture` is the interior texture, projected (fracture faces)
@@ -85,6 +86,11 @@ private:
     void scene_pass(uint32_t frame, const PixelRect& rect, bool fading_only);
     // Where this frame's edges are: the screen rectangle of every item that does not fade.
     PixelRect edge_rect(uint32_t frame) const;
+    // Where this frame's shadows can fall on the ground, on the screen: the casters' boxes carried
+    // along the light onto the ground plane, padded for the lookups' filter and normal offset.
+    PixelRect shadow_rect(uint32_t frame) const;
+    // Draws a shadow_clip item: with lookups within shadow_rect_, without them around it.
+    void draw_shadow_clipped(const Item& item, const PixelRect& rect);
     static int variant(const Item& item) {
         return (item.specular > 0 ? 1 : 0) | (item.fade ? 2 : 0) | (item.receives ? 0 : 4) |
                (item.texture >= 0 && !item.interior ? 8 : 0) | (item.interior ? 16 : 0);
@@ -105,6 +111,8 @@ private:
     std::vector<Camera> cameras_;  // one per frame, or one for all
     Lights lights_;
     std::vector<Item> items_;
+    double ground_y_ = 0;        // the ground's height, when a shadow_clip item is drawn
+    PixelRect shadow_rect_;      // this frame's shadow_rect
     RenderTarget target_;
     std::unique_ptr<ShadowMap> shadow_map_;
     std::vector<MaterialLook> looks_;                   // the model's materials (colours = "input"), else empty
