@@ -1,9 +1,10 @@
 // The cracks before and after fairing, side by side: a shot or a mesh (with the default shot) is
-// prescored twice, `crack_fairing = false` (the tet faces between the pieces) and true (the
-// default), and both are drawn at the same frame of the render benchmark's synthetic trajectory
-// (the pieces flown apart and turned, so that their crack faces show), at 960x540 with the
-// defaults' look. Writes OUT.png (left: tet faces, right: faired) and prints one CSV row per side
-// with the crack faces' crease density (prescore/crack_creases.h). `make refresh` runs it for
+// prescored three times, `crack_fairing = false` (the tet faces between the pieces), the default
+// (faired) and with `crack_split = true` (faired on the crack tets split), and each is drawn at
+// the same frame of the render benchmark's synthetic trajectory (the pieces flown apart and
+// turned, so that their crack faces show), at 960x540 with the defaults' look. Writes OUT.png
+// (left to right in that order) and prints one CSV row per variant with the crack faces' crease
+// density (prescore/crack_creases.h). `make refresh` runs it for
 // docs/render.md's images.
 //
 //   crack_look OUT.png SHOT_OR_MESH [FRAME]   (FRAME of 60, default 45)
@@ -36,9 +37,11 @@ int main(int argc, char** argv) {
         std::filesystem::remove_all(work);
         Image side_by_side;
         std::printf("mesh,cracks,pieces,crack_area_m2,crease_density,crease_share\n");
-        for (bool fair : {false, true}) {
+        const char* const names[] = {"tet faces", "faired", "faired (crack_split)"};
+        for (int look = 0; look < 3; ++look) {
             Shot variant = shot;
-            variant.prescore.crack_fairing = fair;
+            variant.prescore.crack_fairing = look > 0;
+            variant.prescore.crack_split = look == 2;
             PrescoreReport report;
             const Model model = prescore_shot(variant, &report);  // the shot's flight grades impact seeds
             std::vector<RenderSurface> surfaces;
@@ -46,7 +49,7 @@ int main(int argc, char** argv) {
                 if (p.render) surfaces.push_back(*p.render);
             const CrackCreases c = crack_creases(surfaces, report.input.diagonal);
             std::printf("%s,%s,%zu,%.5g,%.2f,%.3f\n", std::filesystem::path(shot.mesh.path).filename().c_str(),
-                        fair ? "faired" : "tet faces", model.pieces.size(), c.area, c.density, c.share);
+                        names[look], model.pieces.size(), c.area, c.density, c.share);
             SceneSettings scene_settings;  // the ground only
             const Trajectory trajectory = testing_support::test_trajectory(model, scene_settings, frames);
             RenderScene scene;
@@ -58,14 +61,14 @@ int main(int argc, char** argv) {
             rs.height = 540;
             RenderOptions options;
             options.progress = false;
-            const std::string dir = work + (fair ? "/faired" : "/tet");
+            const std::string dir = work + "/" + std::to_string(look);
             render_frames(scene, rs, {frame, frame + 1}, dir, options);
             const Image image = load_png(dir + "/" + frame_file_name(frame));
-            if (side_by_side.width == 0) side_by_side = Image(2 * image.width, image.height);
+            if (side_by_side.width == 0) side_by_side = Image(3 * image.width, image.height);
             for (uint32_t y = 0; y < image.height; ++y)
                 for (uint32_t x = 0; x < image.width; ++x) {
                     const uint8_t* from = image.pixel(x, y);
-                    uint8_t* to = side_by_side.pixel(x + (fair ? image.width : 0), y);
+                    uint8_t* to = side_by_side.pixel(x + uint32_t(look) * image.width, y);
                     to[0] = from[0], to[1] = from[1], to[2] = from[2];
                 }
         }

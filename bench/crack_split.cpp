@@ -6,7 +6,8 @@
 // their tets' and the length of the within-interface edges by bend, in 10-degree bins (both in
 // density units). docs/log.md has what it found.
 //
-//   crack_split MODEL...          (a .model file as it is)
+//   crack_split [--split] MODEL...   (a .model file as it is; --split: the crack tets split, as
+//                                    `crack_split = true` makes them)
 //   crack_split --make OUT.model SHOT_OR_MESH   (prescored as crack_look does, render surfaces off)
 #include <algorithm>
 #include <array>
@@ -54,11 +55,12 @@ int main(int argc, char** argv) {
         return 0;
     }
     std::printf("model,piece,tets,area,within,junction,density\n");
-    for (int a = 1; a < argc; ++a) {
+    const bool split = argc > 1 && std::string(argv[1]) == "--split";
+    for (int a = split ? 2 : 1; a < argc; ++a) {
         try {
             const Model model = load_model(argv[a]);
             const auto t0 = std::chrono::steady_clock::now();
-            const std::optional<CrackCells> cells = faired_crack_cells(model);
+            const std::optional<CrackCells> cells = faired_crack_cells(model, split);
             const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (!cells) {
                 std::printf("%s,none\n", argv[a]);

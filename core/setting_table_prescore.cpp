@@ -219,6 +219,11 @@ SettingsSection prescore_section() {
                      "render surfaces: the crack between two pieces drawn as one smooth surface (false: the zigzag of "
                      "the tet faces between them)")
                  .json_unless_default(),
+             boolean("crack_split", at(&Shot::prescore, &PrescoreSettings::crack_split),
+                     "faired cracks: their last cut made on the crack tets split in eight, so that a crack bends within "
+                     "a tet: fewer creases (docs/results/cracks.md) for a longer prescore (the split triples the crack "
+                     "triangles the cut works through)")
+                 .json_unless_default(),
              number("crack_roughness", "tet sizes", at(&Shot::prescore, &PrescoreSettings::crack_roughness),
                     kCrackRoughnessLimits,
                     "faired cracks: the most a crack point moves, by a seeded relief faded in over one wavelength from the "

@@ -82,6 +82,7 @@ struct PrescoreSettings {
     uint32_t constraints_per_pair = 0;    // most constraints joining two pieces; 0: one per shared vertex
     bool render_surface = true;           // cut the input per piece for drawing (prescore/render_surface.h)
     bool crack_fairing = true;            // render surfaces: the cracks between pieces faired (prescore/crack_fairing.h)
+    bool crack_split = false;             // faired cracks: the last cut on the crack tets split 1:8 (smoother, dearer)
     double crack_roughness = 0;           // faired cracks' relief: its amplitude (unit: tet sizes); 0: smooth
     double crack_roughness_scale = 2;     // and its wavelength (unit: tet sizes)
     SeedMode seeds = SeedMode::Uniform;   // where the seeds go

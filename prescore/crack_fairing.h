@@ -84,7 +84,7 @@ struct CrackFairingSettings {
     int fit_rounds = 2;           // most rounds of the volume fit (0: none)
     double fit_tolerance = 0.05;  // a cell within this share of its tets' volume is left as it is
     double keep = 0.75;           // least share of its tets' volume a piece's cell keeps before it is held
-    bool split_tets = true;       // the last cut on the crack tets split 1:8 (crack_refinement.h)
+    bool split_tets = false;      // the last cut on the crack tets split 1:8 (crack_refinement.h)
 };
 
 // A point of the arrangement: weights over up to four tet-mesh vertices (ascending ids).

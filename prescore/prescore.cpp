@@ -260,6 +260,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
     RenderSurfaceSettings rs;
     rs.margin = kRenderSurfaceMargin * tet_size;
     rs.fair_cracks = looks.crack_fairing;
+    rs.split_cracks = looks.crack_split;
     rs.roughness = looks.crack_roughness * tet_size;
     rs.roughness_scale = looks.crack_roughness_scale * tet_size;
     rs.roughness_seed = looks.seed;
@@ -293,7 +294,7 @@ void add_render_surfaces(Model& model, const TriangleMesh& surface, std::unique_
         // which need the pieces' tets and surfaces alone.
         std::optional<CrackCells> faired;
         try {
-            if (rs.fair_cracks) faired = faired_crack_cells(model);
+            if (rs.fair_cracks) faired = faired_crack_cells(model, rs.split_cracks);
         } catch (const std::exception& e) {
             spdlog::info("render surfaces: cracks not faired ({})", e.what());
         }

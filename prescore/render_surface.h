@@ -91,6 +91,7 @@ struct RenderSurfaceSettings {
     double margin = 0;              // how far outer cell vertices move out, at most (unit: m); > 0
     double crease_degrees = 40;     // input edges with a dihedral angle above this stay sharp (unit: degrees)
     bool fair_cracks = true;        // cells from the tet vertices with the cracks faired (crack_fairing.h)
+    bool split_cracks = false;      // their last cut on the crack tets split 1:8 (CrackFairingSettings::split_tets)
     double roughness = 0;           // the faired cracks' relief: amplitude (unit: m; 0: none)
     double roughness_scale = 1;     // and wavelength (unit: m)
     uint64_t roughness_seed = 1;
@@ -98,7 +99,8 @@ struct RenderSurfaceSettings {
 
 // The cells of the faired cracks between `model`'s pieces (crack_fairing.h); none when its
 // pieces have fewer than kCrackFairingTetsPerPiece tets on average (logged).
-std::optional<CrackCells> faired_crack_cells(const Model& model);
+// `split`: CrackFairingSettings::split_tets.
+std::optional<CrackCells> faired_crack_cells(const Model& model, bool split);
 
 // One render surface per model piece; `input` is the closed, outward surface the tets were
 // made from (the alpha wrap when prescore wrapped the input).

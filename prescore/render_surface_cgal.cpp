@@ -482,14 +482,16 @@ Mesh cut_cell(const Mesh& whole, Mesh cell, const char** why) {
 
 }  // namespace
 
-std::optional<CrackCells> faired_crack_cells(const Model& model) {
+std::optional<CrackCells> faired_crack_cells(const Model& model, bool split) {
     if (model.mesh.tets.size() < kCrackFairingTetsPerPiece * model.pieces.size()) {
         spdlog::info("render surfaces: cracks not faired (pieces of {} tets on average, fewer than {})",
                      model.mesh.tets.size() / std::max<size_t>(model.pieces.size(), 1), kCrackFairingTetsPerPiece);
         return std::nullopt;
     }
     const TetTopology topo = build_topology(model.mesh);
-    return crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, cells_of(model, topo)));
+    CrackFairingSettings settings;
+    settings.split_tets = split;
+    return crack_cells(model.mesh, topo, model.tet_piece, boundary_kinds(model, topo, cells_of(model, topo)), settings);
 }
 
 std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Model& model,
@@ -511,7 +513,7 @@ std::vector<RenderSurface> render_surfaces(const TriangleMesh& input, const Mode
     std::optional<Cuttable> made;
     workers.both([&] { made = cuttable(input, settings.crease_degrees); },
                  [&] {
-                     if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model);
+                     if (settings.fair_cracks && !faired_given) faired = faired_crack_cells(model, settings.split_cracks);
                  });
     const Cuttable first = std::move(*made);
     const bool input_ok = first.ok;

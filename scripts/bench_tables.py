@@ -31,8 +31,9 @@ PRESCORE_COLUMNS = [("mesh", "mesh", "text"), ("resolution", "resolution", "text
                     ("pieces", "pieces", "int"), ("constraints", "constraints", "int"),
                     ("collision_parts", "collision parts", "int"), ("load_s", "load", "text"),
                     ("check_s", "check", "text"), ("tetrahedralize_s", "tetrahedralize", "text"),
-                    ("hollow_s", "hollow", "text"), ("partition_s", "partition", "text"),
-                    ("constraints_s", "constraints", "text"), ("pieces_s", "pieces", "text"),
+                    ("hollow_s", "hollow", "text"), ("impact_s", "impact", "text"), ("partition_s", "partition", "text"),
+                    ("constraints_s", "constraints", "text"), ("pieces_render_s", "pieces + render surfaces", "text"),
+                    ("appearance_s", "appearance", "text"), ("other_s", "other", "text"),
                     ("write_s", "write", "text"), ("total_s", "total", "text")]
 RENDER_COLUMNS = [("scene", "scene", "text"), ("width", "width", "text"), ("height", "height", "text"), ("shadows", "shadows", "text"),
                   ("shadow_map", "shadow map", "text"), ("msaa", "msaa", "text"), ("msaa_region", "msaa region", "text"),

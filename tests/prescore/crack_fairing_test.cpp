@@ -148,10 +148,10 @@ TEST(CrackFairing, SplittingTheCrackTetsHalvesTheBendsBetweenTheCracksTriangles)
     }
     const TetTopology topo = build_topology(s.mesh);
     const std::vector<std::array<FaceKind, 4>> kinds(s.mesh.tets.size(), {FaceKind::Outer, FaceKind::Outer, FaceKind::Outer, FaceKind::Outer});
-    CrackFairingSettings whole;
-    whole.split_tets = false;
-    const CrackCells before = crack_cells(s.mesh, topo, s.piece, kinds, whole);
-    const CrackCells after = crack_cells(s.mesh, topo, s.piece, kinds);
+    CrackFairingSettings split;
+    split.split_tets = true;
+    const CrackCells before = crack_cells(s.mesh, topo, s.piece, kinds);
+    const CrackCells after = crack_cells(s.mesh, topo, s.piece, kinds, split);
     EXPECT_EQ(before.split_tets, 0u);
     EXPECT_GT(after.split_tets, 100u);
     EXPECT_EQ(after.open, 0u);
