@@ -31,8 +31,9 @@
 // all its own) its alone, so that its cracks stay within the tets that touch them.
 //
 // Planar within a tet, the crack bends at the tets' faces, by the linear interpolation's error in
-// chi's direction, which grows with the tet's size over sigma (and with its flatness). So the last
-// cut is made on the crack tets split 1:8 (crack_refinement.h): the tets where the largest piece is
+// chi's direction, which grows with the tet's size over sigma (and with its flatness). With
+// `split_tets` (`[prescore] crack_split`; off by default for its cost) the last cut is made on the
+// crack tets split 1:8 (crack_refinement.h): the tets where the largest piece is
 // not the same at all four vertices or leads the next by less than 0.1 (0.05 left more of the crack
 // tets' midpoints linear and bent the crack around a ball more, 0.2 and 0.4 gave the demo the same
 // creases), each into eight at its edges' midpoints, where chi is the Gaussian sum itself at the
