@@ -26,6 +26,20 @@ namespace fs = std::filesystem;
 using testing_support::FramesAppearing;
 using testing_support::TempDir;
 
+// The message of the error that encoding FRAMES frames of `dir` into `mp4` raises, its exit code
+// `code` (a test failure when there is none).
+std::string encode_error(const std::string& dir, uint32_t frames, const std::string& mp4, ExitCode code,
+                         const FrameReady& ready = {}) {
+    try {
+        encode_mp4(dir, frames, 30.0, mp4, ready);
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), code);
+        return e.what();
+    }
+    ADD_FAILURE() << "no error";
+    return "";
+}
+
 // Frame i: a grey level 40 + 10 i on the left half, a moving bright bar on the right.
 void write_frames(const fs::path& dir, uint32_t count, uint32_t w, uint32_t h) {
     fs::create_directories(dir);
@@ -125,13 +139,9 @@ TEST(Encode, FramesTakenAsTheyAppearGiveTheBytesOfFramesThatWereAllThere) {
 TEST(Encode, AFrameThatNeverComesEndsTheEncodingAndLeavesNoTemporary) {
     TempDir tmp;
     write_frames(tmp.path() / "frames", 3, 32, 32);
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 5, 30.0, tmp.file("out.mp4"), [](uint32_t f) { return f < 3; });
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        EXPECT_NE(std::string(e.what()).find("frame_00003.png"), std::string::npos) << e.what();
-    }
+    const std::string what = encode_error((tmp.path() / "frames").string(), 5, tmp.file("out.mp4"), ExitCode::BadInput,
+                                          [](uint32_t f) { return f < 3; });
+    EXPECT_NE(what.find("frame_00003.png"), std::string::npos) << what;
     EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
 }
 
@@ -148,21 +158,11 @@ TEST(Encode, HostileDirectoryAndFileNamesWork) {
 
 TEST(Encode, MissingFramesAreBadInputAndLeaveNoTemporary) {
     TempDir tmp;
-    try {
-        encode_mp4(tmp.file("no-frames"), 10, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        EXPECT_NE(std::string(e.what()).find("no-frames"), std::string::npos);
-    }
+    std::string what = encode_error(tmp.file("no-frames"), 10, tmp.file("out.mp4"), ExitCode::BadInput);
+    EXPECT_NE(what.find("no-frames"), std::string::npos);
     write_frames(tmp.path() / "frames", 3, 16, 16);
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 4, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        EXPECT_NE(std::string(e.what()).find("frame_00003.png"), std::string::npos);
-    }
+    what = encode_error((tmp.path() / "frames").string(), 4, tmp.file("out.mp4"), ExitCode::BadInput);
+    EXPECT_NE(what.find("frame_00003.png"), std::string::npos);
     EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
 }
 
@@ -170,22 +170,12 @@ TEST(Encode, FramesThatAreNoPngOrOfAnotherSizeAreBadInputNamingTheFrame) {
     TempDir tmp;
     fs::create_directories(tmp.path() / "frames");
     for (int i = 0; i < 3; ++i) tmp.write(fmt::format("frames/frame_{:05d}.png", i), "not a png\n");
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 3, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        EXPECT_NE(std::string(e.what()).find("frame_00000.png"), std::string::npos) << e.what();
-    }
+    std::string what = encode_error((tmp.path() / "frames").string(), 3, tmp.file("out.mp4"), ExitCode::BadInput);
+    EXPECT_NE(what.find("frame_00000.png"), std::string::npos) << what;
     write_frames(tmp.path() / "sizes", 3, 32, 32);
     save_png((tmp.path() / "sizes" / "frame_00002.png").string(), Image(32, 16));
-    try {
-        encode_mp4((tmp.path() / "sizes").string(), 3, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::BadInput);
-        EXPECT_NE(std::string(e.what()).find("frame 2 is 32 x 16 pixels, frame 0 32 x 32"), std::string::npos) << e.what();
-    }
+    what = encode_error((tmp.path() / "sizes").string(), 3, tmp.file("out.mp4"), ExitCode::BadInput);
+    EXPECT_NE(what.find("frame 2 is 32 x 16 pixels, frame 0 32 x 32"), std::string::npos) << what;
     EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"frames", "sizes"}));
 }
 
@@ -198,16 +188,11 @@ TEST(Encode, AFailingFfmpegIsAToolErrorWithItsOutput) {
     const std::string fake = tmp.write("bin/ffmpeg", "#!/bin/sh\ncat > /dev/null\necho 'no encoder here' >&2\nexit 3\n");
     fs::permissions(fake, fs::perms::owner_all);
     ScopedPath path((tmp.path() / "bin").string() + ":/usr/bin:/bin");
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::Tool);
-        const std::string what = e.what();
-        EXPECT_NE(what.find("ffmpeg failed (exit code 3)"), std::string::npos) << what;
-        EXPECT_NE(what.find("no encoder here"), std::string::npos) << what;
-        EXPECT_NE(what.find("frame_%05d.png"), std::string::npos) << what;
-    }
+    const std::string what =
+        encode_error((tmp.path() / "frames").string(), 2, tmp.file("out.mp4"), ExitCode::Tool);
+    EXPECT_NE(what.find("ffmpeg failed (exit code 3)"), std::string::npos) << what;
+    EXPECT_NE(what.find("no encoder here"), std::string::npos) << what;
+    EXPECT_NE(what.find("frame_%05d.png"), std::string::npos) << what;
     EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"bin", "frames"}));
 }
 
@@ -236,25 +221,15 @@ TEST(Encode, FfmpegMissingFromPathIsAToolErrorNamingTheFix) {
     TempDir tmp;
     write_frames(tmp.path() / "frames", 2, 16, 16);
     ScopedPath path(tmp.path().string());  // a PATH without ffmpeg
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::Tool);
-        EXPECT_NE(std::string(e.what()).find("install ffmpeg"), std::string::npos) << e.what();
-    }
+    const std::string what = encode_error((tmp.path() / "frames").string(), 2, tmp.file("out.mp4"), ExitCode::Tool);
+    EXPECT_NE(what.find("install ffmpeg"), std::string::npos) << what;
     EXPECT_EQ(tmp.entries(), std::vector<std::string>{"frames"});
 }
 
 TEST(Encode, UnwritableOutputIsAnIoError) {
     TempDir tmp;
     write_frames(tmp.path() / "frames", 2, 16, 16);
-    try {
-        encode_mp4((tmp.path() / "frames").string(), 2, 30.0, tmp.file("no/such/dir/out.mp4"));
-        FAIL() << "no error";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ExitCode::Io);
-    }
+    encode_error((tmp.path() / "frames").string(), 2, tmp.file("no/such/dir/out.mp4"), ExitCode::Io);
 }
 
 }  // namespace
