@@ -103,10 +103,12 @@ TEST(ShotFile, EveryShotTakesTheAutomaticStepAndDirectJointsUnlessItNamesThem) {
     const Shot joints = default_shot_for_mesh("horse.3ds", {"material.preset=glass", "simulate.joints=iterative"});
     EXPECT_TRUE(joints.simulate.auto_substeps);
     EXPECT_EQ(joints.simulate.joints, JointSolve::Iterative);
-    // A shot file's settings are taken as written: the chain sets its step.
-    EXPECT_FALSE(load_shot(std::string(SHATTER_SOURCE_DIR) + "/assets/chain.toml").simulate.auto_substeps);
-    // A shot file that chooses neither the step nor the joint solve, whatever its material.
+    // A shot file's settings are taken as written: one that names its step keeps it.
     TempDir dir;
+    const Shot named = load_shot(dir.write("step.toml", "[mesh]\npath = \"m.obj\"\n[simulate]\nsubsteps = 1000\n"));
+    EXPECT_FALSE(named.simulate.auto_substeps);
+    EXPECT_EQ(named.simulate.substeps, 1000u);
+    // A shot file that chooses neither the step nor the joint solve, whatever its material.
     const std::string file = dir.write("s.toml", "[mesh]\npath = \"m.obj\"\n[material]\npreset = \"porcelain\"\n");
     const Shot unset = load_shot(file);
     EXPECT_TRUE(unset.simulate.auto_substeps);
