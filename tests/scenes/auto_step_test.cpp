@@ -1,6 +1,6 @@
 // substeps = "auto" (simulate/simulate.h, "The automatic step"; a shot's default): the fine step
-// the stiffest joint needs, and the built-in plate and chain (whose step it is) and the bunny on
-// the sphere run with it against fixed steps (1/60,000 s, 1/30,000 s and the bunny's own).
+// the stiffest joint needs, and the built-in plate, chain and bunny on the sphere (whose step it
+// is) run with it against fixed steps (1/60,000 s, 1/30,000 s and 1/480 s).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,10 +133,10 @@ TEST(AutoStep, ATurningPairRunsInTheStepsItsJointsStretchAllows) {
             << "frame " << f;
 }
 
-// The bunny on the sphere (iterative joints, all 362 of which break): its fixed step is one block
-// (1/480 s), so the automatic step saves only where a step spans two blocks: after the impact,
-// once the fragments' loads and motion are calm (each moving under a tenth of its size in the
-// step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
+// The bunny on the sphere (iterative joints, all 362 of which break): the fixed step it shipped
+// with is one block (1/480 s), so the automatic step saves only where a step spans two blocks:
+// after the impact, once the fragments' loads and motion are calm (each moving under a tenth of
+// its size in the step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
 // 960, undone probes counted, the same first break and breaks, and the mean kinetic energy 0.1 s
 // after the break within the study's 10% (the mean steps and both energies pinned:
 // tests/pins/figures.tsv).
@@ -184,8 +184,8 @@ TEST(AutoStep, TwoRunsGiveTheSamePosesAndBreaks) {
 
 // The porcelain chain pulled apart: eleven joints in series reach the strength when the ends have
 // moved 11 F / k apart; the converged answer is 0.3086 s (docs/physics.md section 5b). Over the
-// shot's 2 s, in a twentieth of the 60,000 steps of the fixed step it was studied at and one block of fine steps or
-// fewer, the probes undone counted (pinned: tests/pins/figures.tsv): the slow pull is no impact
+// shot's 2 s, in a twentieth of the 60,000 steps of the fixed step it was studied at (1/30,000 s)
+// and one block of fine steps or fewer, the probes undone counted (pinned: tests/pins/figures.tsv): the slow pull is no impact
 // (its links' velocities hardly change) and runs in steps its springs' stretch allows until the
 // force passes half the strength, in fine steps from there through the break. Where that happens
 // within a block decides whether the block before the break runs fine whole or after splits: a
