@@ -41,6 +41,24 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// The screen rectangle (pixels) of points given in clip space, two pixels wider and clamped to the
+// w x h screen; the whole screen when one lies behind the eye (no safe rectangle), empty when
+// there are none. S is the caller's arithmetic (float or double).
+template <class S>
+PixelRect screen_rect(const std::vector<Eigen::Matrix<S, 4, 1>>& clip, int w, int h) {
+    S x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const Eigen::Matrix<S, 4, 1>& p : clip) {
+        if (!(p.w() > S(1e-6))) return PixelRect{0, 0, w, h};
+        const S x = (p.x() / p.w() * S(0.5) + S(0.5)) * S(w), y = (p.y() / p.w() * S(0.5) + S(0.5)) * S(h);
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (!(x0 <= x1)) return {};
+    constexpr S kMargin = 2;  // pixels
+    const auto clamp = [](S v, int hi) { return int(std::clamp(v, S(0), S(hi))); };
+    return {clamp(std::floor(x0 - kMargin), w), clamp(std::floor(y0 - kMargin), h), clamp(std::ceil(x1 + kMargin), w),
+            clamp(std::ceil(y1 + kMargin), h)};
+}
+
 }  // namespace
 
 FrameRenderer::FrameRenderer(const RenderScene& scene, const RenderSettings& settings, MsaaRegion region)
@@ -391,42 +409,23 @@ PixelRect FrameRenderer::shadow_rect(uint32_t frame) const {
     x0 -= pad, z0 -= pad, x1 += pad, z1 += pad;
     const Camera& c = camera(frame);
     const Eigen::Matrix4d view_projection = (c.projection * c.view).cast<double>();
-    double sx0 = INFINITY, sy0 = INFINITY, sx1 = -INFINITY, sy1 = -INFINITY;
+    std::vector<Eigen::Vector4d> corners;
     for (double x : {x0, x1})
-        for (double z : {z0, z1}) {
-            const Eigen::Vector4d q = view_projection * Eigen::Vector4d(x, ground_y_, z, 1);
-            if (!(q.w() > 1e-6)) return screen;  // behind the eye: no safe rectangle
-            const double px = (q.x() / q.w() * 0.5 + 0.5) * w, py = (q.y() / q.w() * 0.5 + 0.5) * h;
-            sx0 = std::min(sx0, px), sx1 = std::max(sx1, px), sy0 = std::min(sy0, py), sy1 = std::max(sy1, py);
-        }
-    constexpr double kMargin = 2;  // pixels
-    auto clamp = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
-    return {clamp(std::floor(sx0 - kMargin), w), clamp(std::floor(sy0 - kMargin), h), clamp(std::ceil(sx1 + kMargin), w),
-            clamp(std::ceil(sy1 + kMargin), h)};
+        for (double z : {z0, z1}) corners.push_back(view_projection * Eigen::Vector4d(x, ground_y_, z, 1));
+    return screen_rect(corners, w, h);
 }
 
 PixelRect FrameRenderer::edge_rect(uint32_t frame) const {
-    const int w = int(settings_.width), h = int(settings_.height);
-    const PixelRect screen{0, 0, w, h};
     const Camera& c = camera(frame);
     const Eigen::Matrix4f view_projection = c.projection * c.view;
-    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    std::vector<Eigen::Vector4f> corners;  // of every item that does not fade (none: no edges)
     for (const Item& item : items_) {
         if (item.fade) continue;
         const Eigen::Matrix4f m = view_projection * model_matrix(item, frame);
         const Eigen::AlignedBox3f& b = item.mesh->bounds();
-        for (int c = 0; c < 8; ++c) {
-            const Eigen::Vector4f p = m * b.corner(Eigen::AlignedBox3f::CornerType(c)).homogeneous();
-            if (!(p.w() > 1e-6f)) return screen;  // behind the eye: no safe rectangle
-            const float x = (p.x() / p.w() * 0.5f + 0.5f) * float(w), y = (p.y() / p.w() * 0.5f + 0.5f) * float(h);
-            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-        }
+        for (int k = 0; k < 8; ++k) corners.push_back(m * b.corner(Eigen::AlignedBox3f::CornerType(k)).homogeneous());
     }
-    if (!(x0 <= x1)) return {};  // nothing with an edge
-    constexpr float kMargin = 2;  // pixels
-    auto clamp = [](float v, int hi) { return int(std::clamp(v, 0.0f, float(hi))); };
-    return {clamp(std::floor(x0 - kMargin), w), clamp(std::floor(y0 - kMargin), h), clamp(std::ceil(x1 + kMargin), w),
-            clamp(std::ceil(y1 + kMargin), h)};
+    return screen_rect(corners, int(settings_.width), int(settings_.height));
 }
 
 bool FrameRenderer::same_picture(uint32_t a, uint32_t b) const {
