@@ -65,7 +65,7 @@ constexpr double kFitStep = 0.4;
 class Neighbourhood {
 public:
     Neighbourhood(const TetMesh& mesh, const TetTopology& topo, const std::vector<uint32_t>& tet_piece)
-        : mesh_(mesh), topo_(topo), tet_piece_(tet_piece), seen_(mesh.tets.size(), UINT32_MAX) {
+        : topo_(topo), tet_piece_(tet_piece), seen_(mesh.tets.size(), UINT32_MAX) {
         tets_of.resize(mesh.vertices.size());
         for (uint32_t t = 0; t < mesh.tets.size(); ++t)
             for (uint32_t v : mesh.tets[t]) tets_of[v].push_back(t);
@@ -118,7 +118,6 @@ public:
     uint32_t first_piece() const { return tet_piece_[reach_.front()]; }
 
 private:
-    const TetMesh& mesh_;
     const TetTopology& topo_;
     const std::vector<uint32_t>& tet_piece_;
     std::vector<Vec3> centre_;
@@ -205,10 +204,8 @@ public:
         out_.across.resize(pieces);
     }
 
-    // The cells, and each point's name in `names`.
-    CrackCells run(std::vector<Name>& names) {
+    CrackCells run() {
         for (uint32_t t = 0; t < mesh_.tets.size(); ++t) cut_tet(t);
-        names = std::move(names_);
         return std::move(out_);
     }
 
@@ -552,15 +549,9 @@ struct Fine {
 
 Fine refine(const TetMesh& mesh, const TetTopology& topology, const std::vector<std::array<FaceKind, 4>>& face_kind,
             Neighbourhood& hood, const std::vector<uint32_t>& tet_piece, const Field& field,
-            const std::vector<double>& scale, double sigma, const std::vector<char>& held_piece, bool split_any) {
+            const std::vector<double>& scale, double sigma, const std::vector<char>& held_piece) {
     const auto pure = [&](uint32_t v) { return field.start[v + 1] - field.start[v] == 1; };
     Fine f;
-    if (!split_any) {  // the tets as they are, the field as it is
-        f.mesh = refine_tets(mesh, topology, face_kind, std::vector<char>(mesh.tets.size(), 0));
-        f.piece = tet_piece;
-        f.field = field;
-        return f;
-    }
     // Per vertex: its largest scaled piece and by how much it leads the next.
     std::vector<uint32_t> top(mesh.vertices.size(), UINT32_MAX);
     std::vector<double> lead(mesh.vertices.size(), 0);
@@ -657,16 +648,18 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
     std::vector<double> scale(pieces, 1.0);  // each piece's field is scale x chi
     Neighbourhood hood(mesh, topology, tet_piece);
     Field unscaled = piece_field(mesh, hood, tet_piece, sigma, held);
+    // The tets as they are, for every cut but one on split tets.
+    const CrackRefinement whole = refine_tets(mesh, topology, face_kind, std::vector<char>(mesh.tets.size(), 0));
     // The cells of the field as it is scaled now, on the tets split (the last round) or not.
     const auto cut = [&](bool split) {
-        const Fine fine = refine(mesh, topology, face_kind, hood, tet_piece, unscaled, scale, sigma, held, split);
-        Field field = fine.field;
+        const Fine fine = split ? refine(mesh, topology, face_kind, hood, tet_piece, unscaled, scale, sigma, held) : Fine{};
+        const CrackRefinement& tets = split ? fine.mesh : whole;
+        Field field = split ? fine.field : unscaled;
         for (size_t i = 0; i < field.value.size(); ++i) field.value[i] *= scale[field.piece[i]];
-        std::vector<Name> names;
-        CrackCells cells = Arrangement(fine.mesh, fine.piece, field, pieces).run(names);
-        to_original(cells, fine.mesh);
+        CrackCells cells = Arrangement(tets, split ? fine.piece : tet_piece, field, pieces).run();
+        to_original(cells, tets);
         for (const std::vector<Tri>& cell : cells.triangles) cells.open += !closed(cell);
-        cells.split_tets = split ? (fine.mesh.mesh.tets.size() - mesh.tets.size()) / 7 : 0;
+        cells.split_tets = (tets.mesh.tets.size() - mesh.tets.size()) / 7;
         return cells;
     };
     int fits = settings.fit_rounds;

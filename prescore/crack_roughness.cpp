@@ -36,10 +36,6 @@ double gradient_noise(const Vec3& x, uint64_t seed) {
     return sum;
 }
 
-}  // namespace
-
-namespace {
-
 // Two octaves of gradient noise (wavelength and half of it at half the height), in [-1, 1].
 double relief_channel(const Vec3& x, double wavelength, uint64_t seed) {
     const Vec3 u = x / wavelength;
