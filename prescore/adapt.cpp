@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <optional>
 #include <limits>
 #include <numeric>
 
@@ -121,31 +123,42 @@ double mesh_seconds(size_t surface_triangles) { return kMeshSeconds + kMeshSecon
 
 namespace {
 
-// Mesh_3 at one resolution, in a child process (core/isolated.h): an empty mesh when it made
-// no tets, nullopt when it hit its vertex budget, ran past mesh_seconds, or crashed twice (the
-// second time without protected sharp creases, where its crashes were seen: elk.off).
-std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrapped, double diagonal,
-                                          double resolution) {
+// Mesh_3's settings for a first attempt at one resolution.
+TetrahedralizeSettings first_settings(double diagonal, double resolution, bool wrapped) {
     TetrahedralizeSettings ts = tetrahedralize_settings_for(diagonal, resolution);
     ts.max_vertices = kMaxMeshVertices;
     // An alpha wrap's creases are the wrap's own facets meeting, not the object's edges; protecting
     // them is where Mesh_3 crashed or stalled (lion.off, blobby_3cc.off of CGAL's data set).
     ts.protect_features = !wrapped;
+    return ts;
+}
+
+// One Mesh_3 call's bytes: its tets, "B" when it hit the vertex budget, "0" when it made none.
+std::function<std::string()> tet_work(const TriangleMesh& surface, const TetrahedralizeSettings& ts) {
+    return [&surface, ts]() -> std::string {
+        try {
+            return serialize(tetrahedralize(surface, ts));
+        } catch (const TetBudgetReached&) {
+            return "B";
+        } catch (const Error& e) {
+            if (std::string(e.what()).find("made no tets") == std::string::npos) throw;
+            return "0";
+        }
+    };
+}
+
+// Mesh_3 at one resolution, in a child process (core/isolated.h): an empty mesh when it made
+// no tets, nullopt when it hit its vertex budget, ran past mesh_seconds, or crashed twice (the
+// second time without protected sharp creases, where its crashes were seen: elk.off). `early`:
+// the first attempt, begun already.
+std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrapped, double diagonal,
+                                          double resolution, EarlyTets* early = nullptr) {
+    TetrahedralizeSettings ts = first_settings(diagonal, resolution, wrapped);
     for (int attempt = 0; attempt < 2; ++attempt, ts.protect_features = false) {
         std::string bytes;
         try {
-            bytes = run_isolated(
-                [&]() -> std::string {
-                    try {
-                        return serialize(tetrahedralize(surface, ts));
-                    } catch (const TetBudgetReached&) {
-                        return "B";
-                    } catch (const Error& e) {
-                        if (std::string(e.what()).find("made no tets") == std::string::npos) throw;
-                        return "0";
-                    }
-                },
-                mesh_seconds(surface.triangles.size()));
+            bytes = attempt == 0 && early ? early->finish()
+                                          : run_isolated(tet_work(surface, ts), mesh_seconds(surface.triangles.size()));
         } catch (const IsolatedFailure& f) {
             spdlog::info("tetrahedralize: Mesh_3 {} at resolution {:g}{}", f.timed_out ? "did not finish" : "crashed",
                          resolution, f.timed_out ? "" : fmt::format(" ({})", f.what()));
@@ -161,9 +174,18 @@ std::optional<TetMesh> try_tetrahedralize(const TriangleMesh& surface, bool wrap
 
 }  // namespace
 
+EarlyTets::EarlyTets(const TriangleMesh& surface, double diagonal, double resolution)
+    : resolution_(resolution),
+      run_(std::make_unique<IsolatedRun>(tet_work(surface, first_settings(diagonal, resolution, false)),
+                                         mesh_seconds(surface.triangles.size()))) {}
+
+EarlyTets::~EarlyTets() = default;
+
+std::string EarlyTets::finish() { return run_->finish(); }
+
 FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshCheck& surface_check, bool wrapped,
                     double diagonal, const MeshSettings& mesh, const PrescoreSettings& settings,
-                    const std::string& path, AutoChoices& choices) {
+                    const std::string& path, AutoChoices& choices, EarlyTets* early) {
     FittedTets fit{{}, std::move(surface), surface_check, settings.resolution, wrapped};
     const auto wrap = [&](double offset) {
         fit.surface = alpha_wrap(input, mesh.wrap_alpha * diagonal, offset);
@@ -181,7 +203,8 @@ FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshC
     };
 
     // 1. The asked resolution; a surface whose meshing does not end is wrapped first.
-    std::optional<TetMesh> tets = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, fit.resolution);
+    if (early && (fit.wrapped || early->resolution() != fit.resolution)) early = nullptr;
+    std::optional<TetMesh> tets = try_tetrahedralize(fit.surface, fit.wrapped, diagonal, fit.resolution, early);
     if (!tets && !fit.wrapped && mesh.repair != RepairMode::Never) {
         choices.note("repair: alpha wrap", budget_why(fit.resolution));
         wrap(mesh.wrap_offset * diagonal);

@@ -27,6 +27,7 @@
 // resolution, thickening, sliver and piece choices off: such meshes are refused as before.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -100,13 +101,34 @@ struct FittedTets {
     bool thickened = false;      // ... with walls given a thickness (step 3 below)
 };
 
+class IsolatedRun;
+
+// fit_tets' first Mesh_3 call (the input itself at settings.resolution) begun in a child now, so
+// that prescore counts the input's crossings while it runs (the count decides whether the input
+// is wrapped first; usually it is not). A start that is not used is killed when it goes.
+class EarlyTets {
+public:
+    EarlyTets(const TriangleMesh& surface, double diagonal, double resolution);
+    ~EarlyTets();
+    EarlyTets(const EarlyTets&) = delete;
+    EarlyTets& operator=(const EarlyTets&) = delete;
+    double resolution() const { return resolution_; }
+    // Its result as the call's first attempt reads it; throws as run_isolated does. Once.
+    std::string finish();
+
+private:
+    double resolution_;
+    std::unique_ptr<IsolatedRun> run_;
+};
+
 // Fills `surface` (already checked: `surface_check`; `wrapped` when it is the input's wrap) with
 // tets at settings.resolution, adapting as the header says when parts are lost. `input` is the
-// mesh as loaded (for wrapping), `diagonal` its bounding-box diagonal (unit: m). Throws
-// Error(BadInput) when the mesh cannot be meshed, naming its size and the setting to change.
+// mesh as loaded (for wrapping), `diagonal` its bounding-box diagonal (unit: m). `early`: that
+// first call begun on this `surface` (unwrapped), or null. Throws Error(BadInput) when the mesh
+// cannot be meshed, naming its size and the setting to change.
 FittedTets fit_tets(const TriangleMesh& input, TriangleMesh surface, const MeshCheck& surface_check, bool wrapped,
                     double diagonal, const MeshSettings& mesh, const PrescoreSettings& settings,
-                    const std::string& path, AutoChoices& choices);
+                    const std::string& path, AutoChoices& choices, EarlyTets* early = nullptr);
 
 // partition() over the large clusters (at least kSliverFraction of the volume or kSliverOfLargest
 // of the largest cluster's; at most kMaxBodies of them); the tets of the others take the piece

@@ -56,7 +56,7 @@ inline constexpr double kRenderSurfaceWork = 4e6;             // pieces x surfac
 inline constexpr size_t kRenderSurfaceFewest = 1000;          // fewest kept for many pieces
 inline constexpr size_t kRenderSurfaceSimplifyLimit = 500000; // larger surfaces are first reduced (reduce_surface)
 inline constexpr size_t kRenderSurfaceReduced = 200000;       // to this many triangles
-inline constexpr size_t kRenderSurfaceQuickFactor = 3;        // simplify_surface: meshoptimizer's down to this x the count
+inline constexpr double kRenderSurfaceQuickFactor = 2.5;      // simplify_surface: meshoptimizer's down to this x the count
 
 // The triangles a surface of `surface_triangles` is cut with for `pieces` pieces: at most
 // kRenderSurfaceTriangles, fewer where that many pieces would pass kRenderSurfaceWork, but not
@@ -67,9 +67,11 @@ size_t render_surface_triangles(size_t pieces, size_t surface_triangles);
 // collapse (reduce_surface) down to kRenderSurfaceQuickFactor x max_triangles, then CGAL's
 // (Lindstrom-Turk), deterministic. CGAL's costs ~20 us per triangle removed, meshoptimizer's ~1
 // us; but meshoptimizer keeps input vertices where CGAL places new ones, and all the way down it
-// misses the input by more (the demo bunny at 12,000 triangles: p99 distance 0.075% of the
-// diagonal against CGAL's 0.046%; at 3x then CGAL's 0.047%, in a third of the time). Sheets that touch along an edge or at a vertex get their own
-// copies of the shared vertices first (a border that leaves is closed with a patch); a result
+// misses the input by more (glmark2's bunny at 12,000 triangles: p99 distance 0.075% of the
+// diagonal against CGAL's 0.046%). Handed over at 3, 2.5, 2 and 1.5 times the count: 0.047,
+// 0.0475, 0.0505 and 0.059% (the looks' tolerance is 0.05%) in 0.50, 0.43, 0.34 and 0.25 s, which
+// is prescore's longest branch beside the check and the tets. Sheets that touch along an edge or
+// at a vertex get their own copies of the shared vertices first (a border that leaves is closed with a patch); a result
 // that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when
 // already within, or when it is not a closed polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);

@@ -392,7 +392,7 @@ TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles)
     if (surface.triangles.size() <= max_triangles) return surface;
     // The collapses down to kRenderSurfaceQuickFactor x max_triangles are meshoptimizer's (fast;
     // it keeps input vertices where CGAL's places new ones, so it stops short of the count).
-    const TriangleMesh quick = reduce_surface(surface, kRenderSurfaceQuickFactor * max_triangles);
+    const TriangleMesh quick = reduce_surface(surface, size_t(kRenderSurfaceQuickFactor * double(max_triangles)));
     std::vector<Point> points;
     for (const Vec3& v : quick.vertices) points.emplace_back(v.x(), v.y(), v.z());
     Soup soup;
