@@ -307,8 +307,13 @@ bool shows_only_its_shape(const aiScene& scene) {
 // assimp's import and our merge, in this process.
 LoadedMesh import_in_process(const std::string& path) {
     Assimp::Importer importer;
-    // Drop every per-vertex attribute except the position so JoinIdenticalVertices joins on
-    // position alone (the OBJ loader un-shares vertices: the bunny has 208,998 before joining).
+    // Every per-vertex attribute but the position goes: only the shape is read here. The
+    // vertices that share a position are joined by the merge (Merger), not by assimp's
+    // JoinIdenticalVertices: the OBJ loader un-shares them (the bunny has 208,998 for 34,835
+    // positions), and assimp's join took 0.06 of the bunny's 0.15 s of reading. Over the corpus
+    // the merge alone gives the same meshes (553 of 554 files to the byte; one renumbered:
+    // assimp-testmodels' glTF2/IndexOutOfRange). It joins equal positions only, where assimp's
+    // join also took those within 4 units in the last place of a float.
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
                                 aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
                                     aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS |
@@ -334,8 +339,7 @@ LoadedMesh import_in_process(const std::string& path) {
     // for their animation data alone, and only the static mesh matters here.
     scene = importer.ApplyPostProcessing(aiProcess_RemoveComponent);
     if (scene != nullptr)
-        scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                                             aiProcess_JoinIdenticalVertices);
+        scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate);
     if (scene == nullptr) {
         throw_input_error(path, std::string("corrupt mesh: ") + importer.GetErrorString(), format_fix(path));
     }

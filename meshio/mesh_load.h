@@ -7,14 +7,13 @@
 //      becomes a BadInput error, not a signal; a file that starts like a PLY has its header
 //      checked first, meshio/ply_header.h); a scene without triangles or polygons is refused with a plain
 //      message, then assimp validates it (ValidateDataStructure: indices in range, ...) and
-//      runs Triangulate + JoinIdenticalVertices (normals, UVs, colours removed first, so
-//      vertices are joined on position alone);
+//      runs Triangulate (normals, UVs, colours removed first: only positions are read);
 //   3. walks the node tree depth first (children in file order, a node's meshes in file order),
 //      applying each node's accumulated transform in double precision; a mesh instanced by
 //      several nodes is added once per instance; the coarsest rounding of assimp's single
 //      precision coordinates, against the size of the mesh it rounds, is recorded (FloatRounding);
 //   4. drops points and lines (faces with fewer than 3 indices);
-//   5. merges vertices with exactly equal positions across meshes, keeping the first
+//   5. merges vertices with exactly equal positions, within and across meshes, keeping the first
 //      occurrence's place (deterministic: the output depends only on the file);
 //   6. multiplies every coordinate by `scale` (mesh units -> metres).
 // Every problem a user can cause is a shatter::Error (ExitCode::BadInput) whose message names
