@@ -92,10 +92,11 @@ void refuse_without_area(const MeshCheck& c, const std::string& path) {
 
 // The mesh Mesh_3 will see: the input when it can be tetrahedralized as it is, else its alpha
 // wrap when the repair mode allows. The crossings are counted last (about 0.2 s on glmark2's
-// bunny): when nothing but their count could send the input to the wrap, `meshing_as_it_is` is
-// called first with the surface Mesh_3 would then see (prescore begins the tets beside the count).
-TriangleMesh prepare_surface(const TriangleMesh& input, const MeshSettings& settings, PrescoreReport& report,
-                             const std::function<void(const TriangleMesh&)>& meshing_as_it_is) {
+// bunny): when nothing but their count could send the input to the wrap, Mesh_3 begins on the
+// surface it would then see, at `resolution`, beside the count (`early`, for fit_tets; reset when
+// the input is wrapped after all).
+TriangleMesh prepare_surface(const TriangleMesh& input, const MeshSettings& settings, double resolution,
+                             PrescoreReport& report, std::unique_ptr<EarlyTets>& early) {
     report.input = check_mesh(input, false);
     TriangleMesh mesh = input;
     // Flipping every triangle changes nothing the check counts but the volume's sign.
@@ -103,7 +104,7 @@ TriangleMesh prepare_surface(const TriangleMesh& input, const MeshSettings& sett
     if (report.input.closed() && report.input.volume < 0 && orient_outward(mesh)) oriented.volume = -oriented.volume;
     if (settings.repair != RepairMode::Always && in_scale(report.input.diagonal) && !without_area(report.input) &&
         meshes_as_it_is(report.input, oriented, false, nullptr))
-        meshing_as_it_is(mesh);
+        early = std::make_unique<EarlyTets>(mesh, report.input.diagonal, resolution);
     report.input.self_intersections = oriented.self_intersections = count_self_intersections(input);
     spdlog::info("mesh: {}", describe(report.input));
     refuse_out_of_scale(report.input.diagonal, settings.path);
@@ -122,6 +123,7 @@ TriangleMesh prepare_surface(const TriangleMesh& input, const MeshSettings& sett
             spdlog::info("{} (repair = \"always\")", what);
         else
             report.choices.note(what, why);
+        early.reset();  // (killed: the wrap is meshed instead)
         mesh = alpha_wrap(mesh, settings.wrap_alpha * d, settings.wrap_offset * d);
         report.repaired = true;
     }
@@ -546,17 +548,14 @@ Model prescore(const MeshSettings& mesh_settings, const PrescoreSettings& settin
     std::unique_ptr<SurfaceSimplification> simplification;
     if (settings.render_surface) simplification = std::make_unique<SurfaceSimplification>(input, pieces);
     std::unique_ptr<EarlyTets> early;  // the tets begun while the input's crossings are counted
-    TriangleMesh surface = prepare_surface(input, mesh_settings, report, [&](const TriangleMesh& s) {
-        early = std::make_unique<EarlyTets>(s, report.input.diagonal, settings.resolution);
-    });
+    TriangleMesh surface = prepare_surface(input, mesh_settings, settings.resolution, report, early);
     timer.lap(report.repaired ? "check+repair" : "check");
 
     Model model;
     model.producer = producer_string();
     model.density = settings.density;
     FittedTets fit = fit_tets(input, std::move(surface), report.tetrahedralized_from, report.repaired,
-                              report.input.diagonal, mesh_settings, settings, mesh_settings.path, choices,
-                              report.repaired ? nullptr : early.get());
+                              report.input.diagonal, mesh_settings, settings, mesh_settings.path, choices, early.get());
     early.reset();
     model.mesh = std::move(fit.tets);
     report.resolution = fit.resolution;
