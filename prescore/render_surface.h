@@ -71,9 +71,9 @@ size_t render_surface_triangles(size_t pieces, size_t surface_triangles);
 // diagonal against CGAL's 0.046%). Handed over at 3, 2.5, 2 and 1.5 times the count: 0.047,
 // 0.0475, 0.0505 and 0.059% (the looks' tolerance is 0.05%) in 0.50, 0.43, 0.34 and 0.25 s, which
 // is prescore's longest branch beside the check and the tets. Sheets that touch along an edge or
-// at a vertex get their own copies of the shared vertices first (a border that leaves is closed with a patch); a result
-// that crosses itself is repaired (CGAL's remove_self_intersections). Returned as it is when
-// already within, or when it is not a closed polygon mesh.
+// at a vertex get their own copies of the shared vertices first (a border that leaves is closed
+// with a patch); a result that crosses itself is repaired (CGAL's remove_self_intersections).
+// Returned as it is when already within, or when it is not a closed polygon mesh.
 TriangleMesh simplify_surface(const TriangleMesh& surface, size_t max_triangles);
 
 // `surface` with at most `max_triangles` triangles, by meshoptimizer's edge collapse (quadric
