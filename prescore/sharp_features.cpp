@@ -1,7 +1,9 @@
 #include "prescore/sharp_features.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 namespace shatter {
@@ -10,14 +12,26 @@ namespace {
 
 using Edge = std::pair<uint32_t, uint32_t>;  // (low, high) vertex index
 
-std::map<Edge, std::vector<uint32_t>> edge_triangles(const TriangleMesh& mesh) {
-    std::map<Edge, std::vector<uint32_t>> edges;
+// Each edge (low, high) that exactly two triangles share, with those two, in ascending order of
+// the edge: one sort of the triangles' sides.
+std::vector<std::pair<Edge, std::array<uint32_t, 2>>> edges_of_two(const TriangleMesh& mesh) {
+    std::vector<std::pair<uint64_t, uint32_t>> sides;  // (low << 32 | high, triangle)
+    sides.reserve(3 * mesh.triangles.size());
     for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
         for (int k = 0; k < 3; ++k) {
-            uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-            edges[std::minmax(a, b)].push_back(t);
+            const auto [a, b] = std::minmax(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]);
+            sides.emplace_back(uint64_t(a) << 32 | b, t);
         }
-    return edges;
+    std::sort(sides.begin(), sides.end());
+    std::vector<std::pair<Edge, std::array<uint32_t, 2>>> out;
+    for (size_t i = 0; i < sides.size();) {
+        size_t j = i + 1;
+        while (j < sides.size() && sides[j].first == sides[i].first) ++j;
+        if (j - i == 2)
+            out.push_back({{uint32_t(sides[i].first >> 32), uint32_t(sides[i].first)}, {sides[i].second, sides[i + 1].second}});
+        i = j;
+    }
+    return out;
 }
 
 Vec3 normal(const TriangleMesh& mesh, uint32_t t) {
@@ -28,13 +42,16 @@ Vec3 normal(const TriangleMesh& mesh, uint32_t t) {
 
 }  // namespace
 
+// (A map of edges to vectors of triangles and the normals per edge took 75 to 82 ms on glmark2's
+// bunny, in the tets' critical path; sorted sides and the normals once, 22 to 24 ms.)
 std::vector<Polyline> sharp_polylines(const TriangleMesh& mesh, double angle_degrees, double min_length) {
     const double cos_limit = std::cos(angle_degrees * M_PI / 180.0);
     // Sharp-edge graph: for each vertex, its sharp neighbours in ascending order.
     std::map<uint32_t, std::vector<uint32_t>> graph;
-    for (const auto& [edge, tris] : edge_triangles(mesh)) {
-        if (tris.size() != 2) continue;
-        if (normal(mesh, tris[0]).dot(normal(mesh, tris[1])) >= cos_limit) continue;
+    std::vector<Vec3> normals(mesh.triangles.size());
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t) normals[t] = normal(mesh, t);
+    for (const auto& [edge, tris] : edges_of_two(mesh)) {
+        if (normals[tris[0]].dot(normals[tris[1]]) >= cos_limit) continue;
         graph[edge.first].push_back(edge.second);
         graph[edge.second].push_back(edge.first);
     }
