@@ -652,7 +652,8 @@ CrackCells crack_cells(const TetMesh& mesh, const TetTopology& topology, const s
     const CrackRefinement whole = refine_tets(mesh, topology, face_kind, std::vector<char>(mesh.tets.size(), 0));
     // The cells of the field as it is scaled now, on the tets split (the last round) or not.
     const auto cut = [&](bool split) {
-        const Fine fine = split ? refine(mesh, topology, face_kind, hood, tet_piece, unscaled, scale, sigma, held) : Fine{};
+        const Fine fine =
+            split ? refine(mesh, topology, face_kind, hood, tet_piece, unscaled, scale, sigma, held) : Fine{};
         const CrackRefinement& tets = split ? fine.mesh : whole;
         Field field = split ? fine.field : unscaled;
         for (size_t i = 0; i < field.value.size(); ++i) field.value[i] *= scale[field.piece[i]];

@@ -27,8 +27,10 @@ std::vector<std::pair<Edge, std::array<uint32_t, 2>>> edges_of_two(const Triangl
     for (size_t i = 0; i < sides.size();) {
         size_t j = i + 1;
         while (j < sides.size() && sides[j].first == sides[i].first) ++j;
-        if (j - i == 2)
-            out.push_back({{uint32_t(sides[i].first >> 32), uint32_t(sides[i].first)}, {sides[i].second, sides[i + 1].second}});
+        if (j - i == 2) {
+            const Edge edge{uint32_t(sides[i].first >> 32), uint32_t(sides[i].first)};
+            out.push_back({edge, {sides[i].second, sides[i + 1].second}});
+        }
         i = j;
     }
     return out;

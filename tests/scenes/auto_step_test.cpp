@@ -85,7 +85,9 @@ TEST(AutoStep, ThePlateReproducesItsFixedStepInATwentiethOfTheSteps) {
         ke_auto += kinetic_at(a, a.breaks.front().time + 0.1) / 3;
         const double taken = double(a.steps + a.rejected_steps);
         steps += taken / 3;
-        if (nudge == 0) EXPECT_LE(taken, kPlateAutoSteps) << a.steps << " + " << a.rejected_steps << " steps";
+        if (nudge == 0) {
+            EXPECT_LE(taken, kPlateAutoSteps) << a.steps << " + " << a.rejected_steps << " steps";
+        }
         expect_pinned(fmt::format("auto_step.plate.nudge{:g}um.steps", 1e6 * nudge), taken);
         EXPECT_GT(a.rejected_steps, 0u);
         for (const BreakRecord& b : a.breaks) EXPECT_LT(b.step, kAutoBlock * 0.99) << "break at " << b.time;
@@ -136,9 +138,9 @@ TEST(AutoStep, ATurningPairRunsInTheStepsItsJointsStretchAllows) {
 // The bunny on the sphere (iterative joints, all 362 of which break): the fixed step it shipped
 // with is one block (1/480 s), so the automatic step saves only where a step spans two blocks:
 // after the impact, once the fragments' loads and motion are calm (each moving under a tenth of
-// its size in the step). Over the study's eight drops 1 mm apart sideways, no more steps than the fixed step's
-// 960, undone probes counted, the same first break and breaks, and the mean kinetic energy 0.1 s
-// after the break within the study's 10% (the mean steps and both energies pinned:
+// its size in the step). Over the study's eight drops 1 mm apart sideways, no more steps than the
+// fixed step's 960, undone probes counted, the same first break and breaks, and the mean kinetic
+// energy 0.1 s after the break within the study's 10% (the mean steps and both energies pinned:
 // tests/pins/figures.tsv).
 TEST(AutoStep, TheBunnyOnTheSphereTakesNoMoreStepsThanItsFixedStep) {
     const Shot shot = asset("bunny_sphere");
@@ -185,11 +187,12 @@ TEST(AutoStep, TwoRunsGiveTheSamePosesAndBreaks) {
 // The porcelain chain pulled apart: eleven joints in series reach the strength when the ends have
 // moved 11 F / k apart; the converged answer is 0.3086 s (docs/physics.md section 5b). Over the
 // shot's 2 s, in a twentieth of the 60,000 steps of the fixed step it was studied at (1/30,000 s)
-// and one block of fine steps or fewer, the probes undone counted (pinned: tests/pins/figures.tsv): the slow pull is no impact
-// (its links' velocities hardly change) and runs in steps its springs' stretch allows until the
-// force passes half the strength, in fine steps from there through the break. Where that happens
-// within a block decides whether the block before the break runs fine whole or after splits: a
-// block of fine steps more or less with anything that moves the links' approach.
+// and one block of fine steps or fewer, the probes undone counted (pinned: tests/pins/figures.tsv):
+// the slow pull is no impact (its links' velocities hardly change) and runs in steps its springs'
+// stretch allows until the force passes half the strength, in fine steps from there through the
+// break. Where that happens within a block decides whether the block before the break runs fine
+// whole or after splits: a block of fine steps more or less with anything that moves the links'
+// approach.
 TEST(AutoStep, TheChainBreaksWhereElevenSpringsInSeriesReachTheirStrength) {
     const Shot shot = asset("chain");
     const Model model = prescore_shot(shot, nullptr);
